@@ -1,0 +1,212 @@
+// The pipeline: a Direct3D 11 style immediate context whose draw runs, top to bottom,
+//
+//   IA → VS → GS → clip → setup → bin → rasterize → PS → OM
+//
+// each stage in its own header under raster/stages/. Bind state and resources with the set*
+// calls (D3D11's IASet*, RSSet*, OMSet*), then draw with the shaders as arguments: shaders are
+// template parameters, so every draw is compiled for its own shaders (see shader.hpp).
+//
+//   raster::Context ctx;                        // all cores
+//   ctx.setRenderTargets(&color, &depth);
+//   ctx.setViewport({0, 0, 1280, 720, 0, 1});
+//   ctx.setInputLayout(&layout);
+//   ctx.setVertexBuffer(0, &particles);
+//   ctx.setPrimitiveTopology(raster::Topology::PointList);
+//   ctx.setBlendState(raster::BlendState::additive());
+//   ctx.draw(VsBillboard{}, GsBillboard{...}, PsFire{...}, particleCount);
+//
+// A draw validates everything first (states, layout against the vertex shader's input, buffer
+// ranges, target sizes) and runs all geometry stages before it writes a pixel, so a draw that
+// throws raster::Error leaves the render targets exactly as they were. The image is the same,
+// bit for bit, for any thread count. ContextOptions::reference selects the reference pipeline:
+// interpolation, sampling and blending in double, rounded once, no shortcuts — slow, and the
+// oracle the fast pipeline is measured against.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <memory>
+#include <span>
+#include <string>
+#include <typeindex>
+#include <unordered_map>
+#include <vector>
+
+#include "raster/buffer.hpp"
+#include "raster/check.hpp"
+#include "raster/input_layout.hpp"
+#include "raster/render_target.hpp"
+#include "raster/shader.hpp"
+#include "raster/stages/binner.hpp"
+#include "raster/stages/clipper.hpp"
+#include "raster/stages/geometry_shader.hpp"
+#include "raster/stages/input_assembler.hpp"
+#include "raster/stages/merge_policy.hpp"
+#include "raster/stages/output_merger.hpp"
+#include "raster/stages/pixel_shader.hpp"
+#include "raster/stages/rasterizer.hpp"
+#include "raster/stages/setup.hpp"
+#include "raster/stages/vertex_shader.hpp"
+#include "raster/states.hpp"
+#include "raster/statistics.hpp"
+#include "raster/thread_pool.hpp"
+
+namespace raster {
+
+struct ContextOptions {
+    unsigned threads = 0;    // 0: one per hardware thread
+    bool reference = false;  // the double-precision reference pipeline
+};
+
+namespace detail {
+
+// What the rasteriser reads of one chunk of primitives, filled by the geometry stages.
+template <class V>
+struct Chunk {
+    std::vector<V> vertices;  // clip-space vertices the setups refer to
+    std::vector<TriangleSetup> triangles;
+    std::vector<LineSetup> lines;
+    std::vector<PointSetup> points;
+    std::vector<std::vector<uint32_t>> bins;  // per tile, bin entries in primitive order
+    PipelineStatistics stats;
+    int gsOverflow = 0;
+    uint32_t gsOverflowPrimitive = 0;
+
+    void reset(uint32_t tiles) {
+        vertices.clear(), triangles.clear(), lines.clear(), points.clear();
+        bins.resize(tiles);
+        for (auto& b : bins) b.clear();
+        stats = {};
+        gsOverflow = 0;
+    }
+};
+
+template <class GS, class VsOut>
+struct LastGeometryStage {
+    using Vertex = GeometryShaderOutput<GS>;
+    using Stream = GeometryShaderStream<GS>;
+};
+template <class VsOut>
+struct LastGeometryStage<NoGeometryShader, VsOut> {
+    using Vertex = VsOut;
+    using Stream = OutputStream<VsOut, 1, PrimitiveKind::Point>;  // never used
+};
+
+}  // namespace detail
+
+class Context {
+public:
+    explicit Context(const ContextOptions& options = {});
+
+    // ---- Input assembler ----
+    void setInputLayout(const InputLayout* layout) { layout_ = layout; }
+    void setPrimitiveTopology(Topology topology) { topology_ = topology; }
+    void setVertexBuffer(uint32_t slot, const VertexBuffer* buffer);
+    void setIndexBuffer(const IndexBuffer* buffer) { index_buffer_ = buffer; }
+    // ---- Rasterizer ----
+    void setRasterizerState(const RasterizerState& state) { rasterizer_ = state; }
+    void setViewport(const Viewport& viewport) { viewport_ = viewport; }
+    // ---- Output merger ----
+    void setBlendState(const BlendState& state) { blend_ = state; }
+    void setDepthStencilState(const DepthStencilState& state) { depth_stencil_ = state; }
+    // Up to kMaxRenderTargets colour targets (nullptr entries not allowed) and an optional depth target.
+    void setRenderTargets(std::span<RenderTarget* const> targets, DepthTarget* depth);
+    void setRenderTargets(RenderTarget* target, DepthTarget* depth) {
+        RenderTarget* const one[1] = {target};
+        setRenderTargets(target ? std::span<RenderTarget* const>(one) : std::span<RenderTarget* const>(), depth);
+    }
+
+    const RasterizerState& rasterizerState() const { return rasterizer_; }
+    const Viewport& viewport() const { return viewport_; }
+    const BlendState& blendState() const { return blend_; }
+    const DepthStencilState& depthStencilState() const { return depth_stencil_; }
+
+    // ---- Draws (D3D11's Draw, DrawIndexed, DrawInstanced, DrawIndexedInstanced) ----
+    template <VertexShader VS, PixelShader PS>
+    void draw(const VS& vs, const PS& ps, uint32_t vertexCount, uint32_t startVertex = 0) {
+        execute(vs, NoGeometryShader{}, ps, DrawCall{false, vertexCount, startVertex});
+    }
+    template <VertexShader VS, GeometryShader GS, PixelShader PS>
+    void draw(const VS& vs, const GS& gs, const PS& ps, uint32_t vertexCount, uint32_t startVertex = 0) {
+        execute(vs, gs, ps, DrawCall{false, vertexCount, startVertex});
+    }
+    template <VertexShader VS, PixelShader PS>
+    void drawIndexed(const VS& vs, const PS& ps, uint32_t indexCount, uint32_t startIndex = 0, int32_t baseVertex = 0) {
+        execute(vs, NoGeometryShader{}, ps, DrawCall{true, indexCount, startIndex, baseVertex});
+    }
+    template <VertexShader VS, GeometryShader GS, PixelShader PS>
+    void drawIndexed(const VS& vs, const GS& gs, const PS& ps, uint32_t indexCount, uint32_t startIndex = 0,
+                     int32_t baseVertex = 0) {
+        execute(vs, gs, ps, DrawCall{true, indexCount, startIndex, baseVertex});
+    }
+    template <VertexShader VS, PixelShader PS>
+    void drawInstanced(const VS& vs, const PS& ps, uint32_t vertexCountPerInstance, uint32_t instanceCount,
+                       uint32_t startVertex = 0, uint32_t startInstance = 0) {
+        execute(vs, NoGeometryShader{}, ps,
+                DrawCall{false, vertexCountPerInstance, startVertex, 0, instanceCount, startInstance});
+    }
+    template <VertexShader VS, PixelShader PS>
+    void drawIndexedInstanced(const VS& vs, const PS& ps, uint32_t indexCountPerInstance, uint32_t instanceCount,
+                              uint32_t startIndex = 0, int32_t baseVertex = 0, uint32_t startInstance = 0) {
+        execute(vs, NoGeometryShader{}, ps,
+                DrawCall{true, indexCountPerInstance, startIndex, baseVertex, instanceCount, startInstance});
+    }
+    // Any draw, spelled out.
+    template <VertexShader VS, GeometryShader GS, PixelShader PS>
+    void execute(const VS& vs, const GS& gs, const PS& ps, const DrawCall& call);
+
+    // ---- Statistics ----
+    const PipelineStatistics& drawStatistics() const { return draw_stats_; }   // the last draw
+    const PipelineStatistics& frameStatistics() const { return frame_stats_; }  // since resetFrameStatistics
+    void resetFrameStatistics() { frame_stats_ = {}; }
+
+    unsigned threads() const { return pool_.size(); }
+    bool reference() const { return options_.reference; }
+
+private:
+    // Everything a draw needs that does not depend on the shaders' types; throws on misuse.
+    struct DrawPlan {
+        PixelRect clip;
+        TileGrid grid;
+        ClipPlanes planes;
+        ViewportTransform viewport;
+        std::array<RenderTarget*, kMaxRenderTargets> targets{};
+        int targetCount = 0;
+    };
+    DrawPlan plan(int pixel_shader_targets, bool has_gs, PrimitiveKind gs_input) const;
+
+    template <class T>
+    T& scratch() {
+        auto& slot = scratch_[std::type_index(typeid(T))];
+        if (!slot) slot = std::shared_ptr<void>(new T(), [](void* p) { delete static_cast<T*>(p); });
+        return *static_cast<T*>(slot.get());
+    }
+
+    template <class V>
+    static void clipAndSetup(PrimitiveKind kind, const V* const* v, uint32_t primitive_id, const DrawPlan& plan,
+                             const RasterizerState& rs, detail::Chunk<V>& chunk);
+
+    template <class PS, class V, class Real, class Depth, class Color>
+    void renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, uint32_t chunk_count, const DrawPlan& plan,
+                     const Depth& depth, const Color& color, PipelineStatistics& stats);
+
+    ContextOptions options_;
+    ThreadPool pool_;
+    const InputLayout* layout_ = nullptr;
+    Topology topology_ = Topology::Undefined;
+    std::array<const VertexBuffer*, kMaxInputSlots> vertex_buffers_{};
+    const IndexBuffer* index_buffer_ = nullptr;
+    RasterizerState rasterizer_;
+    Viewport viewport_;
+    BlendState blend_;
+    DepthStencilState depth_stencil_;
+    std::array<RenderTarget*, kMaxRenderTargets> targets_{};
+    int target_count_ = 0;
+    DepthTarget* depth_ = nullptr;
+    PipelineStatistics draw_stats_, frame_stats_;
+    std::unordered_map<std::type_index, std::shared_ptr<void>> scratch_;
+};
+
+}  // namespace raster
+
+#include "raster/pipeline_impl.hpp"

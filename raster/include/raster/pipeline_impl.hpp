@@ -1,0 +1,375 @@
+// The draw itself, stage by stage. Included by pipeline.hpp; read that first.
+#pragma once
+
+#include <bit>
+#include <memory>
+#include <type_traits>
+#include <variant>
+
+namespace raster {
+
+template <VertexShader VS, GeometryShader GS, PixelShader PS>
+void Context::execute(const VS& vs, const GS& gs, const PS& ps, const DrawCall& call) {
+    using VsIn = VertexShaderInput<VS>;
+    using VsOut = VertexShaderOutput<VS>;
+    constexpr bool kHasGs = !std::is_same_v<GS, NoGeometryShader>;
+    using Vertex = typename detail::LastGeometryStage<GS, VsOut>::Vertex;
+    using Stream = typename detail::LastGeometryStage<GS, VsOut>::Stream;
+    static_assert(std::is_same_v<PixelShaderInput<PS>, Vertex>,
+                  "the pixel shader's input struct must be the geometry shader's output struct (or, without a "
+                  "geometry shader, the vertex shader's)");
+    using PsOut = PixelShaderOutput<PS>;
+    constexpr int kPsTargets = detail::ColorTraits<PsOut>::kTargets;
+    PrimitiveKind gs_input = PrimitiveKind::Triangle;
+    if constexpr (kHasGs) {
+        static_assert(std::is_same_v<GeometryShaderInput<GS>, VsOut>,
+                      "the geometry shader's input struct must be the vertex shader's output struct");
+        gs_input = kGeometryShaderInputKind<GS>;
+    }
+
+    // ---- Validation: every check that can fail runs before anything is written ----
+    const DrawPlan p = plan(kPsTargets, kHasGs, gs_input);
+    RASTER_REQUIRE(layout_ != nullptr, InvalidState, "draw without an input layout: call setInputLayout");
+    const auto signature = VsIn::inputSignature();
+    const std::vector<InputFetch> program = layout_->bind(signature, sizeof(VsIn), typeName<VsIn>().c_str());
+    // ---- IA: which vertices, which primitives ----
+    const AssembledDraw assembled = assemble(topology_, call, index_buffer_);
+    if constexpr (kHasGs) {
+        RASTER_REQUIRE(assembled.kind == gs_input, InvalidState,
+                       "geometry shader " + typeName<GS>() + " takes " + std::to_string(int(gs_input)) +
+                           "-vertex primitives but the topology makes " + std::to_string(int(assembled.kind)) +
+                           "-vertex ones");
+    }
+    draw_stats_ = {};
+    if (call.instanceCount == 0 || assembled.fetch.empty()) return;
+    checkVertexBuffers(program, vertex_buffers_, assembled.maxFetch, call.instanceCount - 1, call.startInstance);
+    PipelineStatistics stats;
+    stats.iaVertices = assembled.indicesRead * call.instanceCount;
+    stats.iaPrimitives = uint64_t(assembled.primitiveCount()) * call.instanceCount;
+    stats.vsInvocations = uint64_t(assembled.fetch.size()) * call.instanceCount;
+
+    // ---- VS ----
+    auto& vs_out = scratch<std::vector<VsOut>>();
+    runVertexShader(vs, program, vertex_buffers_, assembled, call, pool_, vs_out);
+
+    // ---- GS → clip → setup → bin, in parallel over chunks of primitives ----
+    const uint32_t per_instance = uint32_t(assembled.fetch.size());
+    const uint32_t prims_per_instance = assembled.primitiveCount();
+    const uint64_t total_prims = stats.iaPrimitives;
+    const uint32_t chunk_count =
+        uint32_t(std::clamp<uint64_t>((total_prims + 1023) / 1024, 1, uint64_t(pool_.size()) * 8));
+    const uint64_t chunk_size = (total_prims + chunk_count - 1) / chunk_count;
+    auto& chunks = scratch<std::vector<detail::Chunk<Vertex>>>();
+    if (chunks.size() < chunk_count) chunks.resize(chunk_count);
+    const int k_in = int(assembled.kind);
+    pool_.parallelFor(chunk_count, [&](uint32_t c, unsigned) {
+        detail::Chunk<Vertex>& chunk = chunks[c];
+        chunk.reset(p.grid.count());
+        const uint64_t begin = c * chunk_size, end = std::min(total_prims, begin + chunk_size);
+        [[maybe_unused]] std::unique_ptr<Stream> stream;
+        if constexpr (kHasGs) stream = std::make_unique<Stream>();
+        for (uint64_t prim = begin; prim < end; ++prim) {
+            const uint32_t instance = uint32_t(prim / prims_per_instance);
+            const uint32_t* refs = &assembled.primitives[size_t(prim % prims_per_instance) * k_in];
+            const VsOut* in[3] = {};
+            for (int j = 0; j < k_in; ++j) in[j] = &vs_out[size_t(instance) * per_instance + refs[j]];
+            if constexpr (kHasGs) {
+                constexpr size_t kIn = size_t(kGeometryShaderInputKind<GS>);
+                std::array<VsOut, kIn> gs_in;
+                for (size_t j = 0; j < kIn; ++j) gs_in[j] = *in[j];
+                ++chunk.stats.gsInvocations;
+                const int overflow = runGeometryShader(gs, gs_in, *stream, [&](PrimitiveKind kind, const Vertex* const* v) {
+                    ++chunk.stats.gsPrimitives;
+                    clipAndSetup(kind, v, uint32_t(prim), p, rasterizer_, chunk);
+                });
+                if (overflow && !chunk.gsOverflow) chunk.gsOverflow = overflow, chunk.gsOverflowPrimitive = uint32_t(prim);
+            } else {
+                clipAndSetup(assembled.kind, in, uint32_t(prim), p, rasterizer_, chunk);
+            }
+        }
+    });
+    for (uint32_t c = 0; c < chunk_count; ++c) {
+        const detail::Chunk<Vertex>& chunk = chunks[c];
+        RASTER_REQUIRE(chunk.gsOverflow == 0, ShaderError,
+                       "geometry shader " + typeName<GS>() + " appended " + std::to_string(chunk.gsOverflow) +
+                           " vertices past its maxvertexcount of " +
+                           std::to_string(Stream::kMaxVertices) + " for primitive " +
+                           std::to_string(chunk.gsOverflowPrimitive) + "; the draw was not rasterised");
+        stats += chunk.stats;
+    }
+    if constexpr (!kHasGs) stats.gsInvocations = stats.gsPrimitives = 0;
+
+    // ---- rasterize → PS → OM, in parallel over screen tiles ----
+    if (!p.clip.empty()) {
+        const DepthPolicy depth = chooseDepthPolicy(depth_stencil_, depth_, options_.reference);
+        const ColorPolicy color = chooseColorPolicy(blend_, p.targets.data(), p.targetCount, options_.reference);
+        if (isOrderIndependent(blend_, p.targetCount)) ++stats.sortsAvoided;
+        std::visit(
+            [&](const auto& d, const auto& c) {
+                using D = std::decay_t<decltype(d)>;
+                using C = std::decay_t<decltype(c)>;
+                constexpr bool kReferenceColor = std::is_same_v<C, ColorGeneric<double>>;
+                constexpr bool kReferenceDepth = std::is_same_v<D, DepthOff> || std::is_same_v<D, DepthDynamic>;
+                if constexpr (kReferenceColor && !kReferenceDepth) {
+                    RASTER_CHECK(!"the reference pipeline uses only the dynamic depth policy");
+                } else {
+                    renderTiles<PS, Vertex, std::conditional_t<kReferenceColor, double, float>>(ps, chunks, chunk_count,
+                                                                                                p, d, c, stats);
+                }
+            },
+            depth, color);
+    }
+    draw_stats_ = stats;
+    frame_stats_ += stats;
+}
+
+template <class V>
+void Context::clipAndSetup(PrimitiveKind kind, const V* const* v, uint32_t primitive_id, const DrawPlan& plan,
+                           const RasterizerState& rs, detail::Chunk<V>& chunk) {
+    PipelineStatistics& st = chunk.stats;
+    ++st.cInvocations;
+    const int n = int(kind);
+    uint32_t all = ~0u, any = 0;
+    for (int i = 0; i < n; ++i) {
+        if (!isFinite(v[i]->position)) {
+            ++st.primitivesNonFinite;
+            return;
+        }
+        const uint32_t code = outcode(v[i]->position, plan.planes);
+        all &= code;
+        any |= code;
+    }
+    if (all != 0) {
+        ++st.primitivesOutside;
+        return;
+    }
+    const uint32_t cut = any & kClipPlanesMask;
+    if (kind == PrimitiveKind::Point && cut != 0) {
+        ++st.primitivesOutside;
+        return;
+    }
+
+    auto setupLine = [&](const ScreenVertex (&s)[2], const uint32_t (&idx)[2]) {
+        LineSetup l;
+        if (!raster::setupLine(s, idx, primitive_id, plan.clip, l)) {
+            ++st.primitivesNoPixels;
+            return;
+        }
+        const uint32_t index = uint32_t(chunk.lines.size());
+        chunk.lines.push_back(l);
+        st.tilesBinned += binBox(l.box, plan.grid, [&](uint32_t tile) {
+            chunk.bins[tile].push_back(binEntry(PrimitiveKind::Line, index));
+        });
+    };
+    auto emit = [&](const V* const* pv) {
+        ++st.cPrimitives;
+        const uint32_t base = uint32_t(chunk.vertices.size());
+        ScreenVertex s[3];
+        uint32_t idx[3];
+        for (int i = 0; i < n; ++i) {
+            chunk.vertices.push_back(*pv[i]);
+            s[i] = toScreen(pv[i]->position, plan.viewport);
+            idx[i] = base + uint32_t(i);
+        }
+        if (kind == PrimitiveKind::Triangle && rs.fillMode == FillMode::Wireframe) {
+            TriangleSetup t;  // for culling only
+            const SetupResult r = setupTriangle(s, idx, primitive_id, rs, plan.clip, t);
+            if (r == SetupResult::Culled) ++st.primitivesCulled;
+            if (r == SetupResult::Culled || r == SetupResult::Degenerate) return;
+            for (int e = 0; e < 3; ++e) {
+                const int e1 = (e + 1) % 3;
+                setupLine({s[e], s[e1]}, {idx[e], idx[e1]});
+            }
+            return;
+        }
+        switch (kind) {
+            case PrimitiveKind::Triangle: {
+                TriangleSetup t;
+                switch (setupTriangle(s, idx, primitive_id, rs, plan.clip, t)) {
+                    case SetupResult::Culled: ++st.primitivesCulled; break;
+                    case SetupResult::Degenerate: ++st.primitivesDegenerate; break;
+                    case SetupResult::NoPixels: ++st.primitivesNoPixels; break;
+                    case SetupResult::Ok: {
+                        const uint32_t index = uint32_t(chunk.triangles.size());
+                        chunk.triangles.push_back(t);
+                        binTriangle(
+                            t, plan.grid,
+                            [&](uint32_t tile) { chunk.bins[tile].push_back(binEntry(PrimitiveKind::Triangle, index)); },
+                            st.tilesBinned, st.tilesRejected);
+                        return;
+                    }
+                }
+                chunk.vertices.resize(base);
+                return;
+            }
+            case PrimitiveKind::Line: setupLine({s[0], s[1]}, {idx[0], idx[1]}); return;
+            case PrimitiveKind::Point: {
+                PointSetup pt;
+                if (!setupPoint(s[0], idx[0], primitive_id, plan.clip, pt)) {
+                    ++st.primitivesNoPixels;
+                    chunk.vertices.resize(base);
+                    return;
+                }
+                const uint32_t index = uint32_t(chunk.points.size());
+                chunk.points.push_back(pt);
+                const PixelRect box{pt.px, pt.py, pt.px, pt.py};
+                st.tilesBinned += binBox(box, plan.grid, [&](uint32_t tile) {
+                    chunk.bins[tile].push_back(binEntry(PrimitiveKind::Point, index));
+                });
+                return;
+            }
+        }
+    };
+    if (cut == 0) {
+        emit(v);
+        return;
+    }
+    ++st.primitivesClipped;
+    if (kind == PrimitiveKind::Triangle) {
+        const V* const tri[3] = {v[0], v[1], v[2]};
+        clipPrimitive<3>(tri, cut, plan.planes, emit);
+    } else {
+        const V* const line[2] = {v[0], v[1]};
+        clipPrimitive<2>(line, cut, plan.planes, emit);
+    }
+}
+
+namespace detail {
+
+// Sets the calling thread's reference-mode flag for the lifetime of the guard.
+struct ReferenceModeGuard {
+    bool saved;
+    explicit ReferenceModeGuard(bool on) : saved(tReferenceMode) { tReferenceMode = on; }
+    ~ReferenceModeGuard() { tReferenceMode = saved; }
+};
+
+}  // namespace detail
+
+template <class PS, class V, class Real, class Depth, class Color>
+void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, uint32_t chunk_count,
+                          const DrawPlan& plan, const Depth& depth, const Color& color, PipelineStatistics& stats) {
+    using Out = PixelShaderOutput<PS>;
+    // The reference pipeline tests depth after the shader, in D3D's literal order; the fast one
+    // before it (the result is the same: shaders here cannot write depth).
+    constexpr bool kEarlyDepth = std::is_same_v<Real, float>;
+    const float min_depth = plan.viewport.minDepth, max_depth = plan.viewport.maxDepth;
+    std::vector<PipelineStatistics> per_thread(pool_.size());
+    pool_.parallelFor(plan.grid.count(), [&](uint32_t tile, unsigned thread) {
+        PipelineStatistics& st = per_thread[thread];
+        const PixelRect rect = plan.grid.tileRect(tile);
+        detail::ReferenceModeGuard reference(std::is_same_v<Real, double>);
+        QuadShader<PS> shader(ps);
+
+        // The output merger for one shaded fragment.
+        auto merge = [&](int32_t x, int32_t y, Real z, const Out& out) {
+            if (isDiscarded(out)) {
+                ++st.fragmentsDiscarded;
+                return;
+            }
+            if constexpr (!kEarlyDepth && Depth::kEnabled) {
+                if (!depth.test(x, y, float(z))) {
+                    ++st.fragmentsLateDepthKilled;
+                    return;
+                }
+            }
+            depth.write(x, y, float(z));
+            const auto& colors = colorsOf(out);
+            if (color.isNoOp(colors)) {
+                ++st.fragmentsBlendNoOp;
+                return;
+            }
+            color.write(x, y, colors);
+        };
+        auto earlyDepthPasses = [&](int32_t x, int32_t y, Real z) {
+            if constexpr (kEarlyDepth && Depth::kEnabled) {
+                if (!depth.test(x, y, float(z))) {
+                    ++st.fragmentsEarlyDepthKilled;
+                    return false;
+                }
+            }
+            return true;
+        };
+
+        for (uint32_t c = 0; c < chunk_count; ++c) {
+            const detail::Chunk<V>& chunk = chunks[c];
+            for (const uint32_t entry : chunk.bins[tile]) {
+                const uint32_t index = binIndex(entry);
+                switch (binKind(entry)) {
+                    case PrimitiveKind::Triangle: {
+                        const TriangleSetup& t = chunk.triangles[index];
+                        const V* const verts[3] = {&chunk.vertices[t.vertex[0]], &chunk.vertices[t.vertex[1]],
+                                                   &chunk.vertices[t.vertex[2]]};
+                        const TriangleInterpolant<Real> ti(t);
+                        const EdgeSteps steps = edgeSteps(t);
+                        auto laneEdges = [&](const Quad& q, int lane) {
+                            const int lx = lane & 1, ly = lane >> 1;
+                            return std::array<int64_t, 3>{q.e[0] + lx * steps.dx[0] + ly * steps.dy[0],
+                                                          q.e[1] + lx * steps.dx[1] + ly * steps.dy[1],
+                                                          q.e[2] + lx * steps.dx[2] + ly * steps.dy[2]};
+                        };
+                        rasterizeTriangle(t, steps, rect, [&](const Quad& q) {
+                            V in[4];
+                            Out out[4];
+                            Real z[4];
+                            uint32_t live = 0;
+                            for (uint32_t m = q.mask; m; m &= m - 1) {
+                                const int lane = std::countr_zero(m);
+                                const int32_t x = q.x + (lane & 1), y = q.y + (lane >> 1);
+                                const auto e = laneEdges(q, lane);
+                                const Barycentrics<Real> b = barycentrics(ti, e[0], e[1], e[2]);
+                                z[lane] = interpolateDepth<Real>(t, e[0], e[1], e[2], min_depth, max_depth);
+                                if (!earlyDepthPasses(x, y, z[lane])) continue;
+                                interpolateAttributes(ti, b, verts, x, y, z[lane], in[lane]);
+                                live |= 1u << lane;
+                            }
+                            if (!live) return;
+                            st.psInvocations += uint64_t(std::popcount(live));
+                            shader.shade(
+                                in, live, out,
+                                [&](int lane, V& helper) {
+                                    const auto e = laneEdges(q, lane);
+                                    const Barycentrics<Real> b = barycentrics(ti, e[0], e[1], e[2]);
+                                    interpolateAttributes(ti, b, verts, q.x + (lane & 1), q.y + (lane >> 1),
+                                                          interpolateDepth<Real>(t, e[0], e[1], e[2], min_depth, max_depth), helper);
+                                },
+                                st);
+                            for (uint32_t m = live; m; m &= m - 1) {
+                                const int lane = std::countr_zero(m);
+                                merge(q.x + (lane & 1), q.y + (lane >> 1), z[lane], out[lane]);
+                            }
+                        });
+                        break;
+                    }
+                    case PrimitiveKind::Line: {
+                        const LineSetup& l = chunk.lines[index];
+                        const V* const verts[2] = {&chunk.vertices[l.vertex[0]], &chunk.vertices[l.vertex[1]]};
+                        rasterizeLine(l, rect, [&](int32_t x, int32_t y, double t) {
+                            V in;
+                            Real z;
+                            interpolateLine<Real>(l, verts, x, y, t, min_depth, max_depth, in, z);
+                            if (!earlyDepthPasses(x, y, z)) return;
+                            ++st.psInvocations;
+                            merge(x, y, z, shader.shadeSingle(in));
+                        });
+                        break;
+                    }
+                    case PrimitiveKind::Point: {
+                        const PointSetup& pt = chunk.points[index];
+                        if (pt.px < rect.x0 || pt.px > rect.x1 || pt.py < rect.y0 || pt.py > rect.y1) break;
+                        V in = chunk.vertices[pt.vertex];
+                        const Real z = std::clamp(Real(pt.z), Real(min_depth), Real(max_depth));
+                        const float w = in.position.w;
+                        in.position = glm::vec4(float(pt.px) + 0.5f, float(pt.py) + 0.5f, float(z), w);
+                        if (!earlyDepthPasses(pt.px, pt.py, z)) break;
+                        ++st.psInvocations;
+                        merge(pt.px, pt.py, z, shader.shadeSingle(in));
+                        break;
+                    }
+                }
+            }
+        }
+    });
+    for (const PipelineStatistics& s : per_thread) stats += s;
+}
+
+}  // namespace raster

@@ -1,0 +1,196 @@
+// Shaders are plain C++ function objects ("functors"), as HLSL functions are plain functions:
+//
+//   vertex shader    Out operator()(const In& in) const
+//   geometry shader  void operator()(const raster::Point<In>& in, raster::TriangleStream<Out, 4>& out) const
+//                    (Point / Line / Triangle input; PointStream / LineStream / TriangleStream output;
+//                    the stream's second parameter is HLSL's [maxvertexcount])
+//   pixel shader     Color operator()(const In& in) const, where Color is glm::vec4,
+//                    std::array<glm::vec4, N> for N render targets, or std::optional of either:
+//                    returning std::nullopt is HLSL's `discard`.
+//
+// Shader resources (textures, samplers, constant buffers) are the functor's members. The pipeline
+// is a template over the functor types, so each shader is inlined into the loop that runs it and
+// a draw without a geometry shader (raster::NoGeometryShader) pays nothing for that stage.
+//
+// The structs passed between stages ("vertices") are flat float records whose first member is
+// `glm::vec4 position` (SV_Position: clip space out of the vertex or geometry shader; in the pixel
+// shader x, y are the pixel centre, z the depth and w the perspective w). Every other member is a
+// float, glm::vec2, vec3 or vec4 attribute, interpolated perspective-correctly.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <type_traits>
+#include <typeinfo>
+
+#include <glm/glm.hpp>
+
+namespace raster {
+
+template <class V>
+concept ShaderVertex = std::is_trivially_copyable_v<V> && std::is_standard_layout_v<V> &&
+                       sizeof(V) % sizeof(float) == 0 && alignof(V) == alignof(float) &&
+                       requires(V v) {
+                           { v.position } -> std::same_as<glm::vec4&>;
+                       };
+
+// Floats in a vertex record, position included.
+template <class V>
+inline constexpr uint32_t kVertexFloats = uint32_t(sizeof(V) / sizeof(float));
+
+template <class V>
+const float* asFloats(const V& v) { return reinterpret_cast<const float*>(&v); }
+template <class V>
+float* asFloats(V& v) { return reinterpret_cast<float*>(&v); }
+
+enum class Topology : uint8_t { Undefined, PointList, LineList, LineStrip, TriangleList, TriangleStrip };
+enum class PrimitiveKind : uint8_t { Point = 1, Line = 2, Triangle = 3 };
+
+// Geometry shader input primitives.
+template <class V>
+using Point = std::array<V, 1>;
+template <class V>
+using Line = std::array<V, 2>;
+template <class V>
+using Triangle = std::array<V, 3>;
+
+// A geometry shader's output stream: at most MaxVertices vertices per invocation (HLSL
+// [maxvertexcount]). Appending more does not write past the stream: the extra vertices are dropped
+// and the draw reports Error(ShaderError) before anything is rasterised.
+template <class V, int MaxVertices, PrimitiveKind Kind>
+class OutputStream {
+public:
+    static_assert(MaxVertices > 0 && MaxVertices <= 1024, "HLSL limits maxvertexcount to 1024");
+    static constexpr int kMaxVertices = MaxVertices;
+    static constexpr PrimitiveKind kKind = Kind;
+    using Vertex = V;
+
+    void Append(const V& v) {
+        if (count_ == MaxVertices) {
+            ++overflow_;
+            return;
+        }
+        cut_[count_] = pending_cut_;
+        pending_cut_ = false;
+        vertices_[count_++] = v;
+    }
+    // Ends the current strip; the next Append starts a new one.
+    void RestartStrip() { pending_cut_ = true; }
+
+    int size() const { return count_; }
+    int overflow() const { return overflow_; }
+    const V& vertex(int i) const { return vertices_[i]; }
+    // True if a new strip starts at vertex i.
+    bool startsStrip(int i) const { return i == 0 || cut_[i]; }
+    void reset() {
+        count_ = 0;
+        overflow_ = 0;
+        pending_cut_ = false;
+    }
+
+private:
+    std::array<V, MaxVertices> vertices_;
+    std::array<bool, MaxVertices> cut_{};
+    int count_ = 0;
+    int overflow_ = 0;
+    bool pending_cut_ = false;
+};
+
+template <class V, int N>
+using PointStream = OutputStream<V, N, PrimitiveKind::Point>;
+template <class V, int N>
+using LineStream = OutputStream<V, N, PrimitiveKind::Line>;
+template <class V, int N>
+using TriangleStream = OutputStream<V, N, PrimitiveKind::Triangle>;
+
+// The readable name of a type (demangled), for error messages.
+std::string demangle(const char* mangled);
+template <class T>
+std::string typeName() {
+    return demangle(typeid(T).name());
+}
+
+// Stands for "no geometry shader bound".
+struct NoGeometryShader {};
+
+namespace detail {
+
+template <class T>
+struct CallTraits;
+template <class C, class R, class A>
+struct CallTraits<R (C::*)(A) const> {
+    using Result = R;
+    using Arg = std::remove_cvref_t<A>;
+};
+template <class C, class A, class S>
+struct CallTraits<void (C::*)(A, S) const> {
+    using Arg = std::remove_cvref_t<A>;
+    using Stream = std::remove_cvref_t<S>;
+};
+
+template <class A>
+struct PrimitiveInput;
+template <class V, size_t N>
+struct PrimitiveInput<std::array<V, N>> {
+    using Vertex = V;
+    static constexpr PrimitiveKind kKind = PrimitiveKind(N);
+};
+
+template <class R>
+struct ColorTraits {
+    static_assert(sizeof(R) == 0, "a pixel shader returns glm::vec4, std::array<glm::vec4, N> or std::optional of one");
+};
+template <>
+struct ColorTraits<glm::vec4> {
+    static constexpr int kTargets = 1;
+    static constexpr bool kCanDiscard = false;
+    static const glm::vec4& color(const glm::vec4& c, int) { return c; }
+};
+template <size_t N>
+struct ColorTraits<std::array<glm::vec4, N>> {
+    static constexpr int kTargets = int(N);
+    static constexpr bool kCanDiscard = false;
+    static const glm::vec4& color(const std::array<glm::vec4, N>& c, int i) { return c[i]; }
+};
+template <class C>
+struct ColorTraits<std::optional<C>> {
+    static constexpr int kTargets = ColorTraits<C>::kTargets;
+    static constexpr bool kCanDiscard = true;
+};
+
+}  // namespace detail
+
+template <class VS>
+using VertexShaderInput = typename detail::CallTraits<decltype(&VS::operator())>::Arg;
+template <class VS>
+using VertexShaderOutput = typename detail::CallTraits<decltype(&VS::operator())>::Result;
+
+template <class GS>
+using GeometryShaderInput =
+    typename detail::PrimitiveInput<typename detail::CallTraits<decltype(&GS::operator())>::Arg>::Vertex;
+template <class GS>
+inline constexpr PrimitiveKind kGeometryShaderInputKind =
+    detail::PrimitiveInput<typename detail::CallTraits<decltype(&GS::operator())>::Arg>::kKind;
+template <class GS>
+using GeometryShaderStream = typename detail::CallTraits<decltype(&GS::operator())>::Stream;
+template <class GS>
+using GeometryShaderOutput = typename GeometryShaderStream<GS>::Vertex;
+
+template <class PS>
+using PixelShaderInput = typename detail::CallTraits<decltype(&PS::operator())>::Arg;
+template <class PS>
+using PixelShaderOutput = typename detail::CallTraits<decltype(&PS::operator())>::Result;
+
+template <class VS>
+concept VertexShader = requires { typename VertexShaderInput<VS>; } && ShaderVertex<VertexShaderOutput<VS>> &&
+                       requires { VertexShaderInput<VS>::inputSignature(); };
+template <class GS>
+concept GeometryShader = std::is_same_v<GS, NoGeometryShader> ||
+                         (ShaderVertex<GeometryShaderInput<GS>> && ShaderVertex<GeometryShaderOutput<GS>>);
+template <class PS>
+concept PixelShader = requires { typename PixelShaderInput<PS>; } && ShaderVertex<PixelShaderInput<PS>>;
+
+}  // namespace raster

@@ -1,0 +1,123 @@
+// raster bench particles|fog: renders a benchmark scene of SCENES.md K times and prints the median
+// frame time, in the one-line format ../shared/anchors/compare.sh reads, after the fast path's
+// error against the reference pipeline.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "options.hpp"
+#include "raster/scenes.hpp"
+
+namespace raster::tools {
+namespace {
+
+constexpr const char* kUsage =
+    "usage: raster bench particles|fog [--width W] [--height H] [--count N] [--cubes M]\n"
+    "                    [--fog constant|height] [--frames K] [--threads T] [--out image.png]\n"
+    "                    [--texture fire.png] [--reference] [--no-error]\n"
+    "  K timed frames (default 20) after one warm-up frame, on T threads (default: all cores).\n"
+    "  Prints the fast pipeline's error against the reference pipeline (skip with --no-error), then\n"
+    "  'raster <scene> <W>x<H> ms_per_frame_median=<t> frames=<K>'.\n";
+
+struct ImageError {
+    double mean = 0;  // mean absolute channel difference, in 1/255
+    int max = 0;
+    double within1 = 0;  // share of pixels whose largest channel difference is <= 1
+};
+
+ImageError compareImages(const RenderTarget& a, const RenderTarget& b) {
+    const std::vector<uint8_t> x = a.toRgba8(), y = b.toRgba8();
+    ImageError e;
+    size_t within = 0;
+    double sum = 0;
+    const size_t pixels = x.size() / 4;
+    for (size_t p = 0; p < pixels; ++p) {
+        int m = 0;
+        for (int c = 0; c < 3; ++c) {
+            const int d = std::abs(int(x[4 * p + c]) - int(y[4 * p + c]));
+            sum += d;
+            m = std::max(m, d);
+        }
+        e.max = std::max(e.max, m);
+        within += m <= 1;
+    }
+    e.mean = sum / (3.0 * double(pixels));
+    e.within1 = double(within) / double(pixels);
+    return e;
+}
+
+}  // namespace
+
+int bench(int argc, char** argv) {
+    ArgReader args(argc, argv);
+    if (args.done()) {
+        std::fputs(kUsage, stderr);
+        return 2;
+    }
+    const std::string scene_name(args.take());
+    if (scene_name == "--help" || scene_name == "-h") {
+        std::fputs(kUsage, stdout);
+        return 0;
+    }
+    SceneOptions options;
+    uint32_t frames = 20, threads = 0;
+    std::string out;
+    bool reference = false, error = true;
+    while (!args.done()) {
+        const std::string_view a = args.take();
+        if (a == "--width") options.width = parseUint(a, args.value(a), 1, RenderTarget::kMaxSize);
+        else if (a == "--height") options.height = parseUint(a, args.value(a), 1, RenderTarget::kMaxSize);
+        else if (a == "--count") options.count = parseUint(a, args.value(a), 0, 50'000'000);
+        else if (a == "--cubes") options.cubes = parseUint(a, args.value(a), 0, 1024);
+        else if (a == "--frames") frames = parseUint(a, args.value(a), 1, 100000);
+        else if (a == "--threads") threads = parseUint(a, args.value(a), 1, 1024);
+        else if (a == "--out") out = args.value(a);
+        else if (a == "--texture") options.texture = args.value(a);
+        else if (a == "--reference") reference = true;
+        else if (a == "--no-error") error = false;
+        else if (a == "--fog") {
+            const std::string_view f = args.value(a);
+            RASTER_REQUIRE(f == "constant" || f == "height", InvalidArgument,
+                           "--fog takes constant or height, not '" + std::string(f) + "'");
+            options.heightFog = f == "height";
+        } else if (a == "--help" || a == "-h") {
+            std::fputs(kUsage, stdout);
+            return 0;
+        } else {
+            throw Error(ErrorCode::InvalidArgument, "unknown option '" + std::string(a) + "'\n" + kUsage);
+        }
+    }
+    std::unique_ptr<Scene> scene = makeScene(scene_name, options);
+    Context context({threads, reference});
+    RenderTarget color(options.width, options.height);
+    DepthTarget depth(options.width, options.height);
+
+    scene->render(context, color, depth);  // warm-up
+    std::vector<double> ms;
+    for (uint32_t f = 0; f < frames; ++f) {
+        const auto t0 = std::chrono::steady_clock::now();
+        scene->render(context, color, depth);
+        ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    }
+    std::sort(ms.begin(), ms.end());
+    if (!out.empty()) color.savePng(out);
+
+    std::printf("threads=%u reference=%d min_ms=%.3f max_ms=%.3f\n", context.threads(), int(reference), ms.front(),
+                ms.back());
+    if (error && !reference) {
+        Context ref_context({threads, true});
+        RenderTarget ref_color(options.width, options.height);
+        DepthTarget ref_depth(options.width, options.height);
+        scene->render(ref_context, ref_color, ref_depth);
+        const ImageError e = compareImages(color, ref_color);
+        std::printf("error_vs_reference mean_abs=%.4f max_diff=%d within_1=%.6f\n", e.mean, e.max, e.within1);
+    }
+    std::printf("raster %s %ux%u ms_per_frame_median=%.3f frames=%u\n", scene_name.c_str(), options.width,
+                options.height, ms[ms.size() / 2], frames);
+    return 0;
+}
+
+}  // namespace raster::tools

@@ -1,0 +1,9 @@
+// The subcommands of build/bin/raster, one file each.
+#pragma once
+
+namespace raster::tools {
+
+int bench(int argc, char** argv);
+int render(int argc, char** argv);
+
+}  // namespace raster::tools

@@ -1,0 +1,52 @@
+// raster render [scene...] [--out-dir D] [--width W] [--height H] [--reference]: renders the
+// lecture's scenes (all of them by default) to D/<scene>.png.
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "options.hpp"
+#include "raster/scenes.hpp"
+
+namespace raster::tools {
+
+int render(int argc, char** argv) {
+    ArgReader args(argc, argv);
+    std::vector<std::string> names;
+    std::string out_dir = "out";
+    SceneOptions options;
+    bool reference = false;
+    while (!args.done()) {
+        const std::string_view a = args.take();
+        if (a == "--out-dir") out_dir = args.value(a);
+        else if (a == "--width") options.width = parseUint(a, args.value(a), 1, RenderTarget::kMaxSize);
+        else if (a == "--height") options.height = parseUint(a, args.value(a), 1, RenderTarget::kMaxSize);
+        else if (a == "--reference") reference = true;
+        else if (a == "--help" || a == "-h") {
+            std::puts("usage: raster render [particles|fog ...] [--out-dir D] [--width W] [--height H] [--reference]");
+            return 0;
+        } else if (a.starts_with("--")) {
+            throw Error(ErrorCode::InvalidArgument, "unknown option '" + std::string(a) + "'");
+        } else {
+            names.emplace_back(a);
+        }
+    }
+    if (names.empty()) names = sceneNames();
+    std::error_code ec;
+    std::filesystem::create_directories(out_dir, ec);
+    RASTER_REQUIRE(!ec, BadFile, "cannot create output directory '" + out_dir + "': " + ec.message());
+    Context context({0, reference});
+    for (const std::string& name : names) {
+        std::unique_ptr<Scene> scene = makeScene(name, options);
+        RenderTarget color(options.width, options.height);
+        DepthTarget depth(options.width, options.height);
+        scene->render(context, color, depth);
+        const std::string path = out_dir + "/" + name + ".png";
+        color.savePng(path);
+        std::printf("wrote %s (%ux%u)\n", path.c_str(), options.width, options.height);
+    }
+    return 0;
+}
+
+}  // namespace raster::tools
