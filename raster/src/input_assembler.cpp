@@ -52,7 +52,7 @@ void formPrimitives(Topology topology, const std::vector<uint32_t>& sequence, co
                 break;
             case Topology::Undefined: break;
         }
-        strip_begin = end + 1;
+        strip_begin = end;
     }
 }
 

@@ -5,7 +5,7 @@ namespace raster {
 #define RASTER_STAT_FIELDS(X)                                                                             \
     X(iaVertices) X(iaPrimitives) X(vsInvocations) X(gsInvocations) X(gsPrimitives) X(cInvocations)      \
     X(cPrimitives) X(psInvocations) X(primitivesNonFinite) X(primitivesOutside) X(primitivesClipped)     \
-    X(primitivesCulled) X(primitivesDegenerate) X(primitivesNoPixels) X(tilesBinned) X(tilesRejected)    \
+    X(primitivesCulled) X(primitivesDegenerate) X(primitivesNoPixels) X(rectanglesRecognized) X(tilesBinned) X(tilesRejected)    \
     X(fragmentsEarlyDepthKilled) X(fragmentsLateDepthKilled) X(fragmentsDiscarded) X(fragmentsBlendNoOp) \
     X(helperInvocations) X(derivativeReplays) X(sortsAvoided)
 

@@ -247,4 +247,24 @@ glm::vec4 Texture2D::SampleGrad(const SamplerState& s, glm::vec2 uv, glm::vec2 d
     return sampleAtLod<float>(s, uv, lodFromGradients<float>(ddx, ddy));
 }
 
+glm::vec<4, Float8> Texture2D::sampleLanes(const SamplerState& s, const glm::vec<2, Float8>& uv) const {
+    glm::vec<4, Float8> out;
+    const bool lod_matters = levels_.size() > 1 || s.minFilter != s.magFilter;
+    for (int lane = 0; lane < 8; ++lane) {
+        const glm::vec2 p(uv.x[lane], uv.y[lane]);
+        glm::vec4 c;
+        if (lod_matters) {
+            // Fine derivatives within the lane's 2×2 quad: lanes (0,1,4,5) and (2,3,6,7).
+            const int left = lane & ~1, top = lane & ~4;
+            const glm::vec2 ddx(uv.x[left + 1] - uv.x[left], uv.y[left + 1] - uv.y[left]);
+            const glm::vec2 ddy(uv.x[top + 4] - uv.x[top], uv.y[top + 4] - uv.y[top]);
+            c = SampleGrad(s, p, ddx, ddy);
+        } else {
+            c = SampleLevel(s, p, 0.0f);
+        }
+        out.x.set(lane, c.x), out.y.set(lane, c.y), out.z.set(lane, c.z), out.w.set(lane, c.w);
+    }
+    return out;
+}
+
 }  // namespace raster

@@ -67,13 +67,14 @@ struct Chunk {
     std::vector<TriangleSetup> triangles;
     std::vector<LineSetup> lines;
     std::vector<PointSetup> points;
+    std::vector<RectSetup> rects;
     std::vector<std::vector<uint32_t>> bins;  // per tile, bin entries in primitive order
     PipelineStatistics stats;
     int gsOverflow = 0;
     uint32_t gsOverflowPrimitive = 0;
 
     void reset(uint32_t tiles) {
-        vertices.clear(), triangles.clear(), lines.clear(), points.clear();
+        vertices.clear(), triangles.clear(), lines.clear(), points.clear(), rects.clear();
         bins.resize(tiles);
         for (auto& b : bins) b.clear();
         stats = {};
@@ -182,6 +183,9 @@ private:
         return *static_cast<T*>(slot.get());
     }
 
+    template <class V>
+    static bool setupBillboard(const V* const* quad, uint32_t primitive_id, const DrawPlan& plan,
+                               const RasterizerState& rs, detail::Chunk<V>& chunk);
     template <class V>
     static void clipAndSetup(PrimitiveKind kind, const V* const* v, uint32_t primitive_id, const DrawPlan& plan,
                              const RasterizerState& rs, detail::Chunk<V>& chunk);

@@ -62,6 +62,8 @@ void Context::execute(const VS& vs, const GS& gs, const PS& ps, const DrawCall& 
     auto& chunks = scratch<std::vector<detail::Chunk<Vertex>>>();
     if (chunks.size() < chunk_count) chunks.resize(chunk_count);
     const int k_in = int(assembled.kind);
+    // The reference pipeline takes no shortcut: billboards stay two triangles there.
+    [[maybe_unused]] const bool rectangles = !options_.reference && rasterizer_.fillMode == FillMode::Solid;
     pool_.parallelFor(chunk_count, [&](uint32_t c, unsigned) {
         detail::Chunk<Vertex>& chunk = chunks[c];
         chunk.reset(p.grid.count());
@@ -78,10 +80,15 @@ void Context::execute(const VS& vs, const GS& gs, const PS& ps, const DrawCall& 
                 std::array<VsOut, kIn> gs_in;
                 for (size_t j = 0; j < kIn; ++j) gs_in[j] = *in[j];
                 ++chunk.stats.gsInvocations;
-                const int overflow = runGeometryShader(gs, gs_in, *stream, [&](PrimitiveKind kind, const Vertex* const* v) {
-                    ++chunk.stats.gsPrimitives;
-                    clipAndSetup(kind, v, uint32_t(prim), p, rasterizer_, chunk);
-                });
+                const int overflow = runGeometryShader(
+                    gs, gs_in, *stream,
+                    [&](PrimitiveKind kind, const Vertex* const* v) {
+                        ++chunk.stats.gsPrimitives;
+                        clipAndSetup(kind, v, uint32_t(prim), p, rasterizer_, chunk);
+                    },
+                    [&](const Vertex* const* quad) {
+                        return rectangles && setupBillboard(quad, uint32_t(prim), p, rasterizer_, chunk);
+                    });
                 if (overflow && !chunk.gsOverflow) chunk.gsOverflow = overflow, chunk.gsOverflowPrimitive = uint32_t(prim);
             } else {
                 clipAndSetup(assembled.kind, in, uint32_t(prim), p, rasterizer_, chunk);
@@ -121,6 +128,43 @@ void Context::execute(const VS& vs, const GS& gs, const PS& ps, const DrawCall& 
     }
     draw_stats_ = stats;
     frame_stats_ += stats;
+}
+
+template <class V>
+bool Context::setupBillboard(const V* const* quad, uint32_t primitive_id, const DrawPlan& plan,
+                             const RasterizerState& rs, detail::Chunk<V>& chunk) {
+    for (int i = 0; i < 4; ++i)
+        if (!isFinite(quad[i]->position) || outcode(quad[i]->position, plan.planes) != 0) return false;
+    const V* const v[4] = {quad[0], quad[1], quad[2], quad[3]};
+    ScreenVertex s[4];
+    for (int i = 0; i < 4; ++i) s[i] = toScreen(v[i]->position, plan.viewport);
+    RectSetup r;
+    V base, step_x, step_y;
+    bool culled = false;
+    if (!setupRectangle(v, s, primitive_id, rs, plan.clip, r, base, step_x, step_y, culled)) return false;
+    PipelineStatistics& st = chunk.stats;
+    st.gsPrimitives += 2;
+    st.cInvocations += 2;
+    st.cPrimitives += 2;
+    ++st.rectanglesRecognized;
+    if (culled) {
+        st.primitivesCulled += 2;
+        return true;
+    }
+    if (r.box.empty()) {
+        st.primitivesNoPixels += 2;
+        return true;
+    }
+    r.vertex = uint32_t(chunk.vertices.size());
+    chunk.vertices.push_back(base);
+    chunk.vertices.push_back(step_x);
+    chunk.vertices.push_back(step_y);
+    const uint32_t index = uint32_t(chunk.rects.size());
+    chunk.rects.push_back(r);
+    st.tilesBinned += binBox(r.box, plan.grid, [&](uint32_t tile) {
+        chunk.bins[tile].push_back(binEntry(BinKind::Rectangle, index));
+    });
+    return true;
 }
 
 template <class V>
@@ -252,6 +296,12 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
     // The reference pipeline tests depth after the shader, in D3D's literal order; the fast one
     // before it (the result is the same: shaders here cannot write depth).
     constexpr bool kEarlyDepth = std::is_same_v<Real, float>;
+    constexpr bool kWide = [] {
+        if constexpr (WidePixelShader<PS>)
+            return std::is_same_v<Real, float> && std::is_same_v<Out, glm::vec4>;
+        else
+            return false;
+    }();
     const float min_depth = plan.viewport.minDepth, max_depth = plan.viewport.maxDepth;
     std::vector<PipelineStatistics> per_thread(pool_.size());
     pool_.parallelFor(plan.grid.count(), [&](uint32_t tile, unsigned thread) {
@@ -290,57 +340,150 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
             return true;
         };
 
+        // One 2×2 quad: depth_at(lane) gives a lane's depth, fill(lane, z, in) its shader input
+        // (also for helper lanes, which may lie outside the primitive).
+        auto shadeQuad = [&](int32_t qx, int32_t qy, uint32_t mask, auto&& depth_at, auto&& fill) {
+            V in[4];
+            Out out[4];
+            Real z[4];
+            uint32_t live = 0;
+            for (uint32_t m = mask; m; m &= m - 1) {
+                const int lane = std::countr_zero(m);
+                z[lane] = depth_at(lane);
+                if (!earlyDepthPasses(qx + (lane & 1), qy + (lane >> 1), z[lane])) continue;
+                fill(lane, z[lane], in[lane]);
+                live |= 1u << lane;
+            }
+            if (!live) return;
+            st.psInvocations += uint64_t(std::popcount(live));
+            shader.shade(
+                in, live, out, [&](int lane, V& helper) { fill(lane, depth_at(lane), helper); }, st);
+            for (uint32_t m = live; m; m &= m - 1) {
+                const int lane = std::countr_zero(m);
+                merge(qx + (lane & 1), qy + (lane >> 1), z[lane], out[lane]);
+            }
+        };
+
+        // A rectangle (billboard) with a shader that runs eight wide: 4×2 blocks, one call each.
+        // The same arithmetic as the scalar path lane by lane, so the same bits.
+        [[maybe_unused]] auto shadeRectWide = [&](const RectSetup& r, const float* base, const float* step_x,
+                                                  const float* step_y, Real z) __attribute__((flatten)) {
+            if constexpr (kWide) {
+                const int32_t x0 = std::max(r.box.x0, rect.x0), x1 = std::min(r.box.x1, rect.x1);
+                const int32_t y0 = std::max(r.box.y0, rect.y0), y1 = std::min(r.box.y1, rect.y1);
+                const Float8 lane_x(simd::F32x8{0, 1, 2, 3, 0, 1, 2, 3});
+                const Float8 lane_y(simd::F32x8{0, 0, 0, 0, 1, 1, 1, 1});
+                for (int32_t y = y0 & ~1; y <= y1; y += 2) {
+                    for (int32_t x = x0 & ~3; x <= x1; x += 4) {
+                        const bool whole = x >= x0 && x + 3 <= x1 && y >= y0 && y + 1 <= y1;
+                        if constexpr (Depth::kWide && Color::kWide) {
+                          if (whole) {
+                            // All eight pixels inside: depth, shader and blend on the whole block.
+                            uint32_t live = 0xFF;
+                            if constexpr (Depth::kEnabled) {
+                                live = depth.testWide(x, y, float(z));
+                                st.fragmentsEarlyDepthKilled += uint64_t(8 - std::popcount(live));
+                                if (!live) continue;
+                            }
+                            Wide<V> in;
+                            Float8* f = reinterpret_cast<Float8*>(&in);
+                            const Float8 i = Float8(float(x - r.box.x0)) + lane_x;
+                            const Float8 j = Float8(float(y - r.box.y0)) + lane_y;
+                            for (uint32_t k = 0; k < kVertexFloats<V>; ++k)
+                                f[k] = Float8(base[k]) + i * Float8(step_x[k]) + j * Float8(step_y[k]);
+                            const glm::vec<4, Float8> c = ps(in);
+                            const int n = std::popcount(live);
+                            st.psInvocations += uint64_t(n);
+                            st.helperInvocations += uint64_t(8 - n);
+                            depth.writeWide(x, y, float(z), live);
+                            const uint32_t noop = color.noOpWide(c) & live;
+                            st.fragmentsBlendNoOp += uint64_t(std::popcount(noop));
+                            if (live & ~noop) color.writeWide(x, y, c, live & ~noop);
+                            continue;
+                          }
+                        }
+                        uint32_t live = 0;
+                        for (int l = 0; l < 8; ++l) {
+                            const int32_t px = x + (l & 3), py = y + (l >> 2);
+                            if (px >= x0 && px <= x1 && py >= y0 && py <= y1 && earlyDepthPasses(px, py, z))
+                                live |= 1u << l;
+                        }
+                        if (!live) continue;
+                        Wide<V> in;
+                        Float8* f = reinterpret_cast<Float8*>(&in);
+                        const Float8 i = Float8(float(x - r.box.x0)) + lane_x;
+                        const Float8 j = Float8(float(y - r.box.y0)) + lane_y;
+                        for (uint32_t k = 0; k < kVertexFloats<V>; ++k)
+                            f[k] = Float8(base[k]) + i * Float8(step_x[k]) + j * Float8(step_y[k]);
+                        const glm::vec<4, Float8> c = ps(in);
+                        const int n = std::popcount(live);
+                        st.psInvocations += uint64_t(n);
+                        st.helperInvocations += uint64_t(8 - n);
+                        for (uint32_t m = live; m; m &= m - 1) {
+                            const int l = std::countr_zero(m);
+                            merge(x + (l & 3), y + (l >> 2), z, glm::vec4(c.x[l], c.y[l], c.z[l], c.w[l]));
+                        }
+                    }
+                }
+            }
+        };
+
         for (uint32_t c = 0; c < chunk_count; ++c) {
             const detail::Chunk<V>& chunk = chunks[c];
             for (const uint32_t entry : chunk.bins[tile]) {
                 const uint32_t index = binIndex(entry);
                 switch (binKind(entry)) {
-                    case PrimitiveKind::Triangle: {
+                    case BinKind::Triangle: {
                         const TriangleSetup& t = chunk.triangles[index];
                         const V* const verts[3] = {&chunk.vertices[t.vertex[0]], &chunk.vertices[t.vertex[1]],
                                                    &chunk.vertices[t.vertex[2]]};
                         const TriangleInterpolant<Real> ti(t);
                         const EdgeSteps steps = edgeSteps(t);
-                        auto laneEdges = [&](const Quad& q, int lane) {
-                            const int lx = lane & 1, ly = lane >> 1;
-                            return std::array<int64_t, 3>{q.e[0] + lx * steps.dx[0] + ly * steps.dy[0],
-                                                          q.e[1] + lx * steps.dx[1] + ly * steps.dy[1],
-                                                          q.e[2] + lx * steps.dx[2] + ly * steps.dy[2]};
-                        };
                         rasterizeTriangle(t, steps, rect, [&](const Quad& q) {
-                            V in[4];
-                            Out out[4];
-                            Real z[4];
-                            uint32_t live = 0;
-                            for (uint32_t m = q.mask; m; m &= m - 1) {
-                                const int lane = std::countr_zero(m);
-                                const int32_t x = q.x + (lane & 1), y = q.y + (lane >> 1);
-                                const auto e = laneEdges(q, lane);
-                                const Barycentrics<Real> b = barycentrics(ti, e[0], e[1], e[2]);
-                                z[lane] = interpolateDepth<Real>(t, e[0], e[1], e[2], min_depth, max_depth);
-                                if (!earlyDepthPasses(x, y, z[lane])) continue;
-                                interpolateAttributes(ti, b, verts, x, y, z[lane], in[lane]);
-                                live |= 1u << lane;
-                            }
-                            if (!live) return;
-                            st.psInvocations += uint64_t(std::popcount(live));
-                            shader.shade(
-                                in, live, out,
-                                [&](int lane, V& helper) {
-                                    const auto e = laneEdges(q, lane);
-                                    const Barycentrics<Real> b = barycentrics(ti, e[0], e[1], e[2]);
-                                    interpolateAttributes(ti, b, verts, q.x + (lane & 1), q.y + (lane >> 1),
-                                                          interpolateDepth<Real>(t, e[0], e[1], e[2], min_depth, max_depth), helper);
+                            auto edges = [&](int lane) {
+                                const int lx = lane & 1, ly = lane >> 1;
+                                return std::array<int64_t, 3>{q.e[0] + lx * steps.dx[0] + ly * steps.dy[0],
+                                                              q.e[1] + lx * steps.dx[1] + ly * steps.dy[1],
+                                                              q.e[2] + lx * steps.dx[2] + ly * steps.dy[2]};
+                            };
+                            shadeQuad(
+                                q.x, q.y, q.mask,
+                                [&](int lane) {
+                                    const auto e = edges(lane);
+                                    return interpolateDepth<Real>(t, e[0], e[1], e[2], min_depth, max_depth);
                                 },
-                                st);
-                            for (uint32_t m = live; m; m &= m - 1) {
-                                const int lane = std::countr_zero(m);
-                                merge(q.x + (lane & 1), q.y + (lane >> 1), z[lane], out[lane]);
-                            }
+                                [&](int lane, Real z, V& in) {
+                                    const auto e = edges(lane);
+                                    interpolateAttributes(ti, barycentrics(ti, e[0], e[1], e[2]), verts,
+                                                          q.x + (lane & 1), q.y + (lane >> 1), z, in);
+                                });
                         });
                         break;
                     }
-                    case PrimitiveKind::Line: {
+                    case BinKind::Rectangle: {
+                        const RectSetup& r = chunk.rects[index];
+                        const float* base = asFloats(chunk.vertices[r.vertex]);
+                        const float* step_x = asFloats(chunk.vertices[r.vertex + 1]);
+                        const float* step_y = asFloats(chunk.vertices[r.vertex + 2]);
+                        const Real z = std::clamp(Real(r.z), Real(min_depth), Real(max_depth));
+                        if constexpr (kWide) {
+                            shadeRectWide(r, base, step_x, step_y, z);
+                            break;
+                        }
+                        rasterizeRect(r.box, rect, [&](int32_t qx, int32_t qy, uint32_t mask) {
+                            shadeQuad(
+                                qx, qy, mask, [&](int) { return z; },
+                                [&](int lane, Real, V& in) {
+                                    const float i = float(qx + (lane & 1) - r.box.x0);
+                                    const float j = float(qy + (lane >> 1) - r.box.y0);
+                                    float* o = asFloats(in);
+                                    for (uint32_t k = 0; k < kVertexFloats<V>; ++k)
+                                        o[k] = base[k] + i * step_x[k] + j * step_y[k];
+                                });
+                        });
+                        break;
+                    }
+                    case BinKind::Line: {
                         const LineSetup& l = chunk.lines[index];
                         const V* const verts[2] = {&chunk.vertices[l.vertex[0]], &chunk.vertices[l.vertex[1]]};
                         rasterizeLine(l, rect, [&](int32_t x, int32_t y, double t) {
@@ -353,7 +496,7 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                         });
                         break;
                     }
-                    case PrimitiveKind::Point: {
+                    case BinKind::Point: {
                         const PointSetup& pt = chunk.points[index];
                         if (pt.px < rect.x0 || pt.px > rect.x1 || pt.py < rect.y0 || pt.py > rect.y1) break;
                         V in = chunk.vertices[pt.vertex];

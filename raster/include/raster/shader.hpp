@@ -25,8 +25,11 @@
 #include <string>
 #include <type_traits>
 #include <typeinfo>
+#include <utility>
 
 #include <glm/glm.hpp>
+
+#include "raster/simd.hpp"
 
 namespace raster {
 
@@ -179,10 +182,46 @@ using GeometryShaderStream = typename detail::CallTraits<decltype(&GS::operator(
 template <class GS>
 using GeometryShaderOutput = typename GeometryShaderStream<GS>::Vertex;
 
+namespace detail {
 template <class PS>
-using PixelShaderInput = typename detail::CallTraits<decltype(&PS::operator())>::Arg;
+struct PixelShaderTraits {
+    using Input = typename CallTraits<decltype(&PS::operator())>::Arg;
+    using Output = typename CallTraits<decltype(&PS::operator())>::Result;
+};
+// A shader with both a scalar and a wide operator() names its scalar input type `Input`.
 template <class PS>
-using PixelShaderOutput = typename detail::CallTraits<decltype(&PS::operator())>::Result;
+    requires requires { typename PS::Input; }
+struct PixelShaderTraits<PS> {
+    using Input = typename PS::Input;
+    using Output = decltype(std::declval<const PS&>()(std::declval<const Input&>()));
+};
+
+template <class V>
+struct WideOf {};
+template <template <class> class S>
+struct WideOf<S<float>> {
+    using type = S<Float8>;
+};
+}  // namespace detail
+
+template <class PS>
+using PixelShaderInput = typename detail::PixelShaderTraits<PS>::Input;
+template <class PS>
+using PixelShaderOutput = typename detail::PixelShaderTraits<PS>::Output;
+
+// The eight-wide twin of a vertex struct that is a template over its scalar type:
+// for `template <class T> struct Corner { glm::vec<4, T> position; glm::vec<2, T> tex; }`,
+// Wide<Corner<float>> is Corner<Float8>, one Float8 per float, in the same order.
+template <class V>
+using Wide = typename detail::WideOf<V>::type;
+
+// A pixel shader that can also shade eight pixels at once (see simd.hpp).
+template <class PS>
+concept WidePixelShader = requires { typename Wide<PixelShaderInput<PS>>; } &&
+                          sizeof(Wide<PixelShaderInput<PS>>) == kVertexFloats<PixelShaderInput<PS>> * sizeof(Float8) &&
+                          requires(const PS& ps, const Wide<PixelShaderInput<PS>>& in) {
+                              { ps(in) } -> std::same_as<glm::vec<4, Float8>>;
+                          };
 
 template <class VS>
 concept VertexShader = requires { typename VertexShaderInput<VS>; } && ShaderVertex<VertexShaderOutput<VS>> &&
@@ -191,6 +230,8 @@ template <class GS>
 concept GeometryShader = std::is_same_v<GS, NoGeometryShader> ||
                          (ShaderVertex<GeometryShaderInput<GS>> && ShaderVertex<GeometryShaderOutput<GS>>);
 template <class PS>
-concept PixelShader = requires { typename PixelShaderInput<PS>; } && ShaderVertex<PixelShaderInput<PS>>;
+concept PixelShader = (requires { typename PS::Input; } ||
+                       requires { typename detail::CallTraits<decltype(&PS::operator())>::Result; }) &&
+                      ShaderVertex<PixelShaderInput<PS>>;
 
 }  // namespace raster

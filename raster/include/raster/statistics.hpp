@@ -26,6 +26,7 @@ struct PipelineStatistics {
     uint64_t primitivesCulled = 0;        // back- or front-face culled
     uint64_t primitivesDegenerate = 0;    // zero area after snapping to 16.8 fixed point
     uint64_t primitivesNoPixels = 0;      // set up but their box holds no pixel centre in the viewport
+    uint64_t rectanglesRecognized = 0;    // two-triangle strips drawn as one screen rectangle (billboards)
     uint64_t tilesBinned = 0;             // (primitive, tile) pairs the binner produced
     uint64_t tilesRejected = 0;           // tiles in a primitive's box rejected by its edge functions
     uint64_t fragmentsEarlyDepthKilled = 0;  // failed the depth test before the pixel shader ran

@@ -27,11 +27,14 @@ struct BillboardVertex {
     glm::vec4 position;
 };
 
-// GsosBillboard: a corner of the billboard, clip space, with its texture coordinate.
-struct BillboardCorner {
-    glm::vec4 position;
-    glm::vec2 tex;
+// GsosBillboard: a corner of the billboard, clip space, with its texture coordinate. A template
+// over the scalar type so that the pixel shader can also run eight pixels wide (simd.hpp).
+template <class T>
+struct BillboardCornerT {
+    glm::vec<4, T> position;
+    glm::vec<2, T> tex;
 };
+using BillboardCorner = BillboardCornerT<float>;
 
 // Pass-through: the geometry shader does the transform, so that it can open the sprite after projection.
 struct VsBillboard {
@@ -55,11 +58,16 @@ struct GsBillboard {
     }
 };
 
+// Written once for T = float and T = Float8: the pipeline shades 4×2 pixels per call where it can.
 struct PsFire {
+    using Input = BillboardCorner;
     const Texture2D* billboardTexture = nullptr;
     SamplerState sampler = SamplerState::bilinear(AddressMode::Clamp);
 
-    glm::vec4 operator()(const BillboardCorner& in) const { return billboardTexture->Sample(sampler, in.tex); }
+    template <class T>
+    glm::vec<4, T> operator()(const BillboardCornerT<T>& in) const {
+        return billboardTexture->Sample(sampler, in.tex);
+    }
 };
 
 }  // namespace raster::shaders

@@ -37,9 +37,12 @@ struct TileGrid {
     }
 };
 
-// A bin entry: the primitive kind in the top two bits, its index in the chunk below.
-inline uint32_t binEntry(PrimitiveKind kind, uint32_t index) { return (uint32_t(kind) << 30) | index; }
-inline PrimitiveKind binKind(uint32_t entry) { return PrimitiveKind(entry >> 30); }
+// A bin entry: the primitive kind in the top two bits (0 for a rectangle, see RectSetup), its
+// index in the chunk below.
+enum class BinKind : uint32_t { Rectangle = 0, Point = 1, Line = 2, Triangle = 3 };
+inline uint32_t binEntry(BinKind kind, uint32_t index) { return (uint32_t(kind) << 30) | index; }
+inline uint32_t binEntry(PrimitiveKind kind, uint32_t index) { return binEntry(BinKind(kind), index); }
+inline BinKind binKind(uint32_t entry) { return BinKind(entry >> 30); }
 inline uint32_t binIndex(uint32_t entry) { return entry & 0x3FFFFFFFu; }
 
 // Calls push(tile) for each tile the box touches. Returns the number of tiles pushed.

@@ -10,15 +10,23 @@
 namespace raster {
 
 // Runs gs on the primitive `in` and calls emit(kind, vertices) for each primitive it produced.
+// A single strip of exactly four vertices is first offered whole to emit_quad(vertices[4]) (the
+// billboard case, see setupRectangle); if that returns true its two triangles are not emitted.
 // Returns how many vertices the shader appended past its [maxvertexcount] (they were dropped).
-template <class GS, class Emit>
+template <class GS, class Emit, class EmitQuad>
 int runGeometryShader(const GS& gs, const std::array<GeometryShaderInput<GS>, size_t(kGeometryShaderInputKind<GS>)>& in,
-                      GeometryShaderStream<GS>& stream, Emit&& emit) {
+                      GeometryShaderStream<GS>& stream, Emit&& emit, EmitQuad&& emit_quad) {
     using Stream = GeometryShaderStream<GS>;
     using Out = typename Stream::Vertex;
     stream.reset();
     gs(in, stream);
     const int n = stream.size();
+    if constexpr (Stream::kKind == PrimitiveKind::Triangle && Stream::kMaxVertices >= 4) {
+        if (n == 4 && !stream.startsStrip(1) && !stream.startsStrip(2) && !stream.startsStrip(3)) {
+            const Out* quad[4] = {&stream.vertex(0), &stream.vertex(1), &stream.vertex(2), &stream.vertex(3)};
+            if (emit_quad(quad)) return stream.overflow();
+        }
+    }
     int strip_begin = 0;
     for (int end = 1; end <= n; ++end) {
         if (end < n && !stream.startsStrip(end)) continue;
@@ -43,6 +51,12 @@ int runGeometryShader(const GS& gs, const std::array<GeometryShaderInput<GS>, si
         strip_begin = end;
     }
     return stream.overflow();
+}
+
+template <class GS, class Emit>
+int runGeometryShader(const GS& gs, const std::array<GeometryShaderInput<GS>, size_t(kGeometryShaderInputKind<GS>)>& in,
+                      GeometryShaderStream<GS>& stream, Emit&& emit) {
+    return runGeometryShader(gs, in, stream, emit, [](const auto*) { return false; });
 }
 
 }  // namespace raster

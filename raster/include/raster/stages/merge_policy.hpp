@@ -9,17 +9,56 @@
 #pragma once
 
 #include <cstdint>
+#include <cstring>
 #include <type_traits>
 #include <variant>
 
 #include "raster/render_target.hpp"
 #include "raster/states.hpp"
+#include "raster/simd.hpp"
 #include "raster/stages/output_merger.hpp"
 
 namespace raster {
 
+// Depth and colour policies with kWide also take a whole 4×2 block (rows y and y + 1, columns
+// x..x + 3, all inside the target) at once, lane masks as in simd.hpp; they give the same bits as
+// eight single-pixel calls.
+
+namespace detail {
+inline Float8 loadBlock(const float* row0, const float* row1) {
+    Float8 r;
+    std::memcpy(&r.v, row0, 16);
+    std::memcpy(reinterpret_cast<char*>(&r.v) + 16, row1, 16);
+    return r;
+}
+inline void storeBlock(Float8 v, float* row0, float* row1) {
+    std::memcpy(row0, &v.v, 16);
+    std::memcpy(row1, reinterpret_cast<const char*>(&v.v) + 16, 16);
+}
+template <ComparisonFunc F>
+Mask8 depthPasses8(Float8 fragment, Float8 stored) {
+    if constexpr (F == ComparisonFunc::Less) return fragment < stored;
+    else if constexpr (F == ComparisonFunc::LessEqual) return fragment <= stored;
+    else if constexpr (F == ComparisonFunc::Greater) return fragment > stored;
+    else if constexpr (F == ComparisonFunc::GreaterEqual) return fragment >= stored;
+    else if constexpr (F == ComparisonFunc::Equal) return fragment == stored;
+    else if constexpr (F == ComparisonFunc::NotEqual) return fragment != stored;
+    else if constexpr (F == ComparisonFunc::Always) return Mask8::fromBits(0xFF);
+    else return Mask8::fromBits(0);
+}
+// D3D's saturate with NaN -> 0, as detail::saturate in output_merger.hpp, lane by lane.
+inline Float8 saturate8(Float8 v) {
+    const Float8 m = select(Float8(0.0f) < v, v, Float8(0.0f));
+    return select(m < Float8(1.0f), m, Float8(1.0f));
+}
+inline Int8 toUnorm8x8(Float8 v) { return toInt(saturate8(v) * Float8(255.0f) + Float8(0.5f)); }
+}  // namespace detail
+
 struct DepthOff {
     static constexpr bool kEnabled = false;
+    static constexpr bool kWide = true;
+    uint32_t testWide(int32_t, int32_t, float) const { return 0xFF; }
+    void writeWide(int32_t, int32_t, float, uint32_t) const {}
     bool test(int32_t, int32_t, float) const { return true; }
     void write(int32_t, int32_t, float) const {}
 };
@@ -27,8 +66,20 @@ struct DepthOff {
 template <ComparisonFunc F, bool Write>
 struct DepthFixed {
     static constexpr bool kEnabled = true;
+    static constexpr bool kWide = true;
     float* depth;
     uint32_t width;
+    uint32_t testWide(int32_t x, int32_t y, float z) const {
+        const float* row0 = depth + size_t(y) * width + x;
+        return detail::depthPasses8<F>(Float8(z), detail::loadBlock(row0, row0 + width)).bits();
+    }
+    void writeWide(int32_t x, int32_t y, float z, uint32_t mask) const {
+        if constexpr (Write) {
+            float* row0 = depth + size_t(y) * width + x;
+            const Float8 old = detail::loadBlock(row0, row0 + width);
+            detail::storeBlock(select(Mask8::fromBits(mask), Float8(z), old), row0, row0 + width);
+        }
+    }
     bool test(int32_t x, int32_t y, float z) const { return depthPassesT<F>(z, depth[size_t(y) * width + x]); }
     void write(int32_t x, int32_t y, float z) const {
         if constexpr (Write) depth[size_t(y) * width + x] = z;
@@ -37,6 +88,7 @@ struct DepthFixed {
 
 struct DepthDynamic {
     static constexpr bool kEnabled = true;
+    static constexpr bool kWide = false;
     float* depth;
     uint32_t width;
     ComparisonFunc func;
@@ -54,8 +106,40 @@ using DepthPolicy = std::variant<DepthOff, DepthFixed<ComparisonFunc::Less, true
 // One RGBA8 target with a compile-time blender from output_merger.hpp.
 template <class Blender>
 struct ColorFast {
+    static constexpr bool kWide = std::is_same_v<Blender, BlendReplaceRgba8> || std::is_same_v<Blender, BlendAdditiveRgba8>;
     uint8_t* pixels;
     uint32_t width;
+    // Lanes whose fragment cannot change the pixel.
+    uint32_t noOpWide(const glm::vec<4, Float8>& c) const {
+        if constexpr (std::is_same_v<Blender, BlendAdditiveRgba8>)
+            return (detail::saturate8(c.w) == Float8(0.0f)).bits();
+        else
+            return 0;
+    }
+    [[gnu::always_inline]] void writeWide(int32_t x, int32_t y, const glm::vec<4, Float8>& c, uint32_t mask) const {
+        uint8_t* row0 = pixels + 4 * (size_t(y) * width + x);
+        uint8_t* row1 = row0 + 4 * size_t(width);
+        Int8 old;
+        std::memcpy(&old.v, row0, 16);
+        std::memcpy(reinterpret_cast<char*>(&old.v) + 16, row1, 16);
+        Int8 r, g, b, a;
+        if constexpr (std::is_same_v<Blender, BlendAdditiveRgba8>) {
+            // As BlendAdditiveRgba8::apply: rgb = sat(s.rgb)·sat(s.a) + d.rgb, a = sat(s.a)² + d.a.
+            const Float8 k(1.0f / 255.0f);
+            const Float8 sa = detail::saturate8(c.w);
+            r = detail::toUnorm8x8(detail::saturate8(c.x) * sa + toFloat(old & Int8(0xFF)) * k);
+            g = detail::toUnorm8x8(detail::saturate8(c.y) * sa + toFloat((old >> 8) & Int8(0xFF)) * k);
+            b = detail::toUnorm8x8(detail::saturate8(c.z) * sa + toFloat((old >> 16) & Int8(0xFF)) * k);
+            a = detail::toUnorm8x8(sa * sa + toFloat(old >> 24) * k);
+        } else {
+            r = detail::toUnorm8x8(c.x), g = detail::toUnorm8x8(c.y), b = detail::toUnorm8x8(c.z);
+            a = detail::toUnorm8x8(c.w);
+        }
+        const Int8 packed = r | (g << 8) | (b << 16) | (a << 24);
+        const Int8 out = select(Mask8::fromBits(mask), packed, old);
+        std::memcpy(row0, &out.v, 16);
+        std::memcpy(row1, reinterpret_cast<const char*>(&out.v) + 16, 16);
+    }
     template <class Colors>
     bool isNoOp(const Colors& c) const {
         return Blender::isNoOp(colorAt(c, 0));
@@ -72,6 +156,9 @@ struct ColorFast {
 // Any targets, any blend state, per fragment; Real = double in the reference pipeline.
 template <class Real>
 struct ColorGeneric {
+    static constexpr bool kWide = false;
+    uint32_t noOpWide(const glm::vec<4, Float8>&) const { return 0; }
+    void writeWide(int32_t, int32_t, const glm::vec<4, Float8>&, uint32_t) const {}
     RenderTarget* const* targets;
     int count;
     const BlendState* blend;
@@ -95,6 +182,9 @@ struct ColorGeneric {
 };
 
 struct ColorNone {  // no render target bound: a depth-only pass
+    static constexpr bool kWide = true;
+    uint32_t noOpWide(const glm::vec<4, Float8>&) const { return 0xFF; }
+    void writeWide(int32_t, int32_t, const glm::vec<4, Float8>&, uint32_t) const {}
     template <class Colors>
     bool isNoOp(const Colors&) const {
         return true;

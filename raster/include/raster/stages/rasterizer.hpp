@@ -70,6 +70,22 @@ void rasterizeTriangle(const TriangleSetup& t, const EdgeSteps& s, const PixelRe
     }
 }
 
+// Calls visit(x, y, mask) for every 2×2 quad (x, y even) of the rectangle inside `tile`, mask
+// holding the covered lanes.
+template <class Visit>
+void rasterizeRect(const PixelRect& box, const PixelRect& tile, Visit&& visit) {
+    const int32_t x0 = std::max(box.x0, tile.x0), x1 = std::min(box.x1, tile.x1);
+    const int32_t y0 = std::max(box.y0, tile.y0), y1 = std::min(box.y1, tile.y1);
+    if (x0 > x1 || y0 > y1) return;
+    for (int32_t y = y0 & ~1; y <= y1; y += 2) {
+        const uint32_t rows = (y >= y0 ? 0x3u : 0u) | (y + 1 <= y1 ? 0xCu : 0u);
+        for (int32_t x = x0 & ~1; x <= x1; x += 2) {
+            const uint32_t cols = (x >= x0 ? 0x5u : 0u) | (x + 1 <= x1 ? 0xAu : 0u);
+            visit(x, y, rows & cols);
+        }
+    }
+}
+
 // Calls visit(px, py, t) for each pixel of the line inside `tile`, t being the pixel centre's
 // position along the line (0 at vertex 0, 1 at vertex 1) projected on the major axis.
 template <class Visit>
