@@ -2,6 +2,9 @@
 // scalar path they shortcut.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
+#include <limits>
 #include <random>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -136,6 +139,57 @@ TEST(Rectangles, BillboardsAreRecognisedAndWideShadingMatchesScalar) {
     int worst = 0;
     for (size_t i = 0; i < x.size(); ++i) worst = std::max(worst, std::abs(int(x[i]) - int(y[i])));
     EXPECT_LE(worst, 1);
+}
+
+}  // namespace
+}  // namespace raster
+
+namespace raster {
+namespace {
+
+// Distance in units in the last place between two finite floats of the same sign.
+int64_t ulps(float a, float b) {
+    const int32_t ia = __builtin_bit_cast(int32_t, a), ib = __builtin_bit_cast(int32_t, b);
+    return std::abs(int64_t(ia) - int64_t(ib));
+}
+
+TEST(FastMath, ExpAndExpm1WithinTwoUlpOfTheCLibrary) {
+    int64_t worst_exp = 0, worst_expm1 = 0;
+    for (float x = -87.0f; x <= 88.0f; x += 0.0007f) {
+        worst_exp = std::max(worst_exp, ulps(fastExp(x), std::exp(x)));
+        worst_expm1 = std::max(worst_expm1, ulps(fastExpm1(x), std::expm1(x)));
+    }
+    for (float x = -1e-3f; x <= 1e-3f; x += 1.3e-7f) worst_expm1 = std::max(worst_expm1, ulps(fastExpm1(x), std::expm1(x)));
+    EXPECT_LE(worst_exp, 2);
+    EXPECT_LE(worst_expm1, 2);
+    std::printf("fastExp max %lld ulp, fastExpm1 max %lld ulp\n", (long long)worst_exp, (long long)worst_expm1);
+}
+
+TEST(FastMath, LimitsAndSpecialValues) {
+    const float inf = std::numeric_limits<float>::infinity();
+    EXPECT_EQ(fastExp(0.0f), 1.0f);
+    EXPECT_EQ(fastExpm1(0.0f), 0.0f);
+    EXPECT_EQ(fastExp(-inf), 0.0f);
+    EXPECT_EQ(fastExpm1(-inf), -1.0f);
+    EXPECT_EQ(fastExp(inf), inf);
+    EXPECT_EQ(fastExpm1(inf), inf);
+    EXPECT_TRUE(std::isnan(fastExp(std::nanf(""))));
+    EXPECT_EQ(fastExp(-100.0f), 0.0f);
+    EXPECT_EQ(fastExpm1(1e-30f), 1e-30f);
+}
+
+TEST(FastMath, EightWideEqualsScalar) {
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> d(-90.0f, 90.0f);
+    for (int round = 0; round < 1000; ++round) {
+        Float8 x;
+        for (int i = 0; i < 8; ++i) x.set(i, round % 2 ? d(rng) : d(rng) * 1e-3f);
+        const Float8 e = fastExp(x), m = fastExpm1(x);
+        for (int i = 0; i < 8; ++i) {
+            ASSERT_EQ(__builtin_bit_cast(int32_t, e[i]), __builtin_bit_cast(int32_t, fastExp(x[i]))) << x[i];
+            ASSERT_EQ(__builtin_bit_cast(int32_t, m[i]), __builtin_bit_cast(int32_t, fastExpm1(x[i]))) << x[i];
+        }
+    }
 }
 
 }  // namespace

@@ -13,6 +13,7 @@ void usage(FILE* out) {
                  "usage: raster <command> [options]\n"
                  "commands:\n"
                  "  bench particles|fog [options]   time a benchmark scene of SCENES.md (raster bench --help)\n"
+                 "  microbench [benchmark flags]    per-stage microbenchmarks (Google Benchmark: --benchmark_filter=...)\n"
                  "  render [scene...] [--out-dir D] render the lecture's scenes to PNG files\n"
                  "  help                            this text\n");
 }
@@ -27,6 +28,7 @@ int main(int argc, char** argv) {
     const std::string command = argv[1];
     try {
         if (command == "bench") return raster::tools::bench(argc - 2, argv + 2);
+        if (command == "microbench") return raster::tools::microbench(argc - 2, argv + 2);
         if (command == "render") return raster::tools::render(argc - 2, argv + 2);
         if (command == "help" || command == "--help" || command == "-h") {
             usage(stdout);

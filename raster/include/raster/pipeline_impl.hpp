@@ -381,7 +381,7 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                             // All eight pixels inside: depth, shader and blend on the whole block.
                             uint32_t live = 0xFF;
                             if constexpr (Depth::kEnabled) {
-                                live = depth.testWide(x, y, float(z));
+                                live = depth.testWide(x, y, Float8(float(z)));
                                 st.fragmentsEarlyDepthKilled += uint64_t(8 - std::popcount(live));
                                 if (!live) continue;
                             }
@@ -395,7 +395,7 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                             const int n = std::popcount(live);
                             st.psInvocations += uint64_t(n);
                             st.helperInvocations += uint64_t(8 - n);
-                            depth.writeWide(x, y, float(z), live);
+                            depth.writeWide(x, y, Float8(float(z)), live);
                             const uint32_t noop = color.noOpWide(c) & live;
                             st.fragmentsBlendNoOp += uint64_t(std::popcount(noop));
                             if (live & ~noop) color.writeWide(x, y, c, live & ~noop);
@@ -428,6 +428,64 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
             }
         };
 
+        // A triangle with a shader that runs eight wide: 4×2 blocks wholly inside the tile go
+        // through depth, shader and blend at once; blocks on the tile's border go quad by quad.
+        [[maybe_unused]] auto shadeTriangleWide = [&](const TriangleSetup& t, const TriangleInterpolant<Real>& ti,
+                                                      const EdgeSteps& steps,
+                                                      const V* const (&verts)[3]) __attribute__((flatten)) {
+            if constexpr (kWide && Depth::kWide && Color::kWide) {
+                rasterizeTriangleBlocks(t, steps, rect, [&](int32_t x, int32_t y, uint32_t mask, const int64_t (&e)[3][8]) {
+                    if (x >= rect.x0 && x + 3 <= rect.x1 && y >= rect.y0 && y + 1 <= rect.y1) {
+                        Float8 z;
+                        for (int l = 0; l < 8; ++l)
+                            z.set(l, float(interpolateDepth<Real>(t, e[0][l], e[1][l], e[2][l], min_depth, max_depth)));
+                        uint32_t live = mask;
+                        if constexpr (Depth::kEnabled) {
+                            live &= depth.testWide(x, y, z);
+                            st.fragmentsEarlyDepthKilled += uint64_t(std::popcount(mask & ~live));
+                            if (!live) return;
+                        }
+                        Wide<V> in;
+                        interpolateAttributesWide(ti, e, verts, x, y, z, in);
+                        const glm::vec<4, Float8> c = ps(in);
+                        const int n = std::popcount(live);
+                        st.psInvocations += uint64_t(n);
+                        st.helperInvocations += uint64_t(8 - n);
+                        depth.writeWide(x, y, z, live);
+                        const uint32_t noop = color.noOpWide(c) & live;
+                        st.fragmentsBlendNoOp += uint64_t(std::popcount(noop));
+                        if (live & ~noop) color.writeWide(x, y, c, live & ~noop);
+                        return;
+                    }
+                    // On the border: the two 2×2 quads of the block, lane by lane.
+                    for (int half = 0; half < 2; ++half) {
+                        const int b = 2 * half;  // block lanes b, b+1, b+4, b+5 form the quad
+                        const uint32_t qmask = ((mask >> b) & 3u) | (((mask >> (b + 4)) & 3u) << 2);
+                        if (!qmask) continue;
+                        const int32_t qx = x + b;
+                        auto edges = [&](int lane) {
+                            const int bl = b + (lane & 1) + 4 * (lane >> 1);
+                            return std::array<int64_t, 3>{e[0][bl], e[1][bl], e[2][bl]};
+                        };
+                        auto extrapolated = [&](int lane) {  // helper lanes may lie outside the block's mask
+                            return edges(lane);
+                        };
+                        shadeQuad(
+                            qx, y, qmask,
+                            [&](int lane) {
+                                const auto el = extrapolated(lane);
+                                return interpolateDepth<Real>(t, el[0], el[1], el[2], min_depth, max_depth);
+                            },
+                            [&](int lane, Real zl, V& in) {
+                                const auto el = extrapolated(lane);
+                                interpolateAttributes(ti, barycentrics(ti, el[0], el[1], el[2]), verts,
+                                                      qx + (lane & 1), y + (lane >> 1), zl, in);
+                            });
+                    }
+                });
+            }
+        };
+
         for (uint32_t c = 0; c < chunk_count; ++c) {
             const detail::Chunk<V>& chunk = chunks[c];
             for (const uint32_t entry : chunk.bins[tile]) {
@@ -439,6 +497,10 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                                                    &chunk.vertices[t.vertex[2]]};
                         const TriangleInterpolant<Real> ti(t);
                         const EdgeSteps steps = edgeSteps(t);
+                        if constexpr (kWide && Depth::kWide && Color::kWide) {
+                            shadeTriangleWide(t, ti, steps, verts);
+                            break;
+                        }
                         rasterizeTriangle(t, steps, rect, [&](const Quad& q) {
                             auto edges = [&](int lane) {
                                 const int lx = lane & 1, ly = lane >> 1;

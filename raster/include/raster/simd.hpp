@@ -13,8 +13,11 @@
 
 #include <cstdint>
 #include <cstring>
+#include <tuple>
 
 #include <glm/glm.hpp>
+
+#include "raster/shader_context.hpp"
 
 #if defined(__AVX__)
 #include <immintrin.h>
@@ -104,6 +107,7 @@ struct alignas(32) Int8 {
 
 inline Float8 select(Mask8 m, Float8 a, Float8 b) { return m.v ? a.v : b.v; }
 inline Int8 select(Mask8 m, Int8 a, Int8 b) { return m.v ? a.v : b.v; }
+inline int32_t min(int32_t a, int32_t b) { return a < b ? a : b; }
 inline Float8 min(Float8 a, Float8 b) { return a.v < b.v ? a.v : b.v; }
 inline Float8 max(Float8 a, Float8 b) { return a.v > b.v ? a.v : b.v; }
 inline Int8 min(Int8 a, Int8 b) { return a.v < b.v ? a.v : b.v; }
@@ -145,6 +149,88 @@ inline Float8 gather(const float* base, Int8 index) {
 inline float select(bool m, float a, float b) { return m ? a : b; }
 inline float min(float a, float b) { return a < b ? a : b; }
 inline float max(float a, float b) { return a > b ? a : b; }
+inline float sqrt(float a) { return __builtin_sqrtf(a); }
+inline float abs(float a) { return __builtin_fabsf(a); }
+inline Float8 abs(Float8 a) { return simd::F32x8(simd::I32x8(a.v) & 0x7FFFFFFF); }
+
+// exp and expm1 for shaders, over float and Float8 with the same arithmetic (so the scalar and the
+// eight-wide path agree bit for bit): Cody–Waite range reduction x = k·ln2 + r, |r| ≤ ln2/2, a
+// degree-8 Taylor polynomial for e^r − 1 (truncation error < 1e-9 relative), and an exact scaling
+// by 2^k. Measured against the C library over [−87, 88] (tests/simd_test.cpp): at most 1 ulp for
+// exp and 2 ulp for expm1 (which keeps full relative accuracy near 0). exp underflows to 0 below −87.3
+// (no denormals, as GPUs flush them); expm1 is −1 there. In the reference pipeline
+// (shader_context.hpp) the scalar versions call the C library instead, so the fast pipeline's
+// error against the reference includes this approximation.
+namespace detail {
+inline float bitsToFloat(int32_t i) { return __builtin_bit_cast(float, i); }
+inline Float8 bitsToFloat(Int8 i) { return simd::F32x8(i.v); }
+inline int32_t toIntRound(float a) { return int32_t(a + (a < 0.0f ? -0.5f : 0.5f)); }
+inline Int8 toIntRound(Float8 a) { return toInt(a + select(a < Float8(0.0f), Float8(-0.5f), Float8(0.5f))); }
+inline float toFloatI(int32_t i) { return float(i); }
+inline Float8 toFloatI(Int8 i) { return toFloat(i); }
+inline int32_t halfOf(int32_t k) { return k >> 1; }  // arithmetic shift: floor(k / 2)
+inline Int8 halfOf(Int8 k) { return simd::I32x8(k.v >> 1); }
+
+// (k, r, e^r − 1) for x already clamped to [−104, 89].
+template <class T>
+auto expReduce(T x) {
+    const T kf = x * T(1.44269504088896341f);
+    const auto k = toIntRound(kf);
+    const T k_real = toFloatI(k);
+    const T r = (x - k_real * T(0.693359375f)) - k_real * T(-2.12194440e-4f);
+    const T p = r * (T(1.0f) + r * (T(0.5f) + r * (T(1.0f / 6.0f) + r * (T(1.0f / 24.0f) + r * (T(1.0f / 120.0f) +
+                r * (T(1.0f / 720.0f) + r * (T(1.0f / 5040.0f) + r * T(1.0f / 40320.0f))))))));
+    return std::make_tuple(k, p);
+}
+}  // namespace detail
+
+template <class T>
+T fastExp(T x) {
+    const T xc = min(max(x, T(-104.0f)), T(89.0f));
+    auto [k, p] = detail::expReduce(xc);
+    // 2^k in two halves, so that k = 128 (x near 88.7) still scales without overflowing the exponent.
+    const auto k1 = detail::halfOf(k);
+    const T half1 = detail::bitsToFloat((k1 + 127) << 23);
+    const T half2 = detail::bitsToFloat((k - k1 + 127) << 23);
+    const T result = ((T(1.0f) + p) * half1) * half2;
+    const T zero(0.0f), inf(__builtin_inff());
+    return select(x < T(-87.3f), zero, select(x > T(88.72f), inf, select(x != x, x, result)));
+}
+
+template <class T>
+T fastExpm1(T x) {
+    const T xc = min(max(x, T(-104.0f)), T(89.0f));
+    auto [k, p] = detail::expReduce(xc);
+    const auto kk = min(k, decltype(k)(127));
+    const T two_k = detail::bitsToFloat((kk + 127) << 23);  // k ≥ −150 here: flushed to 0 below −126
+    const T result = two_k * p + (two_k - T(1.0f));
+    const T inf(__builtin_inff());
+    return select(x < T(-87.3f), T(-1.0f), select(x > T(88.72f), inf, select(x != x, x, result)));
+}
+
+inline float exp(float a) { return inReferenceMode() ? __builtin_expf(a) : fastExp(a); }
+inline float expm1(float a) { return inReferenceMode() ? __builtin_expm1f(a) : fastExpm1(a); }
+inline Float8 exp(Float8 a) { return fastExp(a); }
+inline Float8 expm1(Float8 a) { return fastExpm1(a); }
+
+// Vector helpers over either scalar type (glm's own dot/normalize want arithmetic types).
+template <int N, class T>
+T dot(const glm::vec<N, T>& a, const glm::vec<N, T>& b) {
+    T r = a[0] * b[0];
+    for (int i = 1; i < N; ++i) r = r + a[i] * b[i];
+    return r;
+}
+template <int N, class T>
+T length(const glm::vec<N, T>& a) {
+    return sqrt(dot(a, a));
+}
+template <int N, class T>
+glm::vec<N, T> normalize(const glm::vec<N, T>& a) {
+    const T inv = T(1.0f) / length(a);
+    glm::vec<N, T> r;
+    for (int i = 0; i < N; ++i) r[i] = a[i] * inv;
+    return r;
+}
 
 // glm's vectors of Float8 work for + − × ÷ between vectors and with Float8 scalars.
 using Vec2x8 = glm::vec<2, Float8>;

@@ -20,6 +20,7 @@
 
 #include "raster/input_layout.hpp"
 #include "raster/shader.hpp"
+#include "raster/simd.hpp"
 
 namespace raster::shaders {
 
@@ -29,32 +30,48 @@ struct FogMedium {
     float b = -0.5f;      // height falloff, 1/m (height fog only)
     bool height = true;   // false: constant fog
 
-    // (e^x − 1)/x, finite and accurate for every x including 0.
-    static float expm1OverX(float x) {
-        if (std::fabs(x) < 1e-4f) return 1.0f + x * (0.5f + x * (1.0f / 6.0f));
-        return std::expm1(x) / x;
+    // (e^x − 1)/x, finite and accurate for every x including 0. T is float or Float8.
+    template <class T>
+    static T expm1OverX(T x) {
+        const T series = T(1.0f) + x * (T(0.5f) + x * T(1.0f / 6.0f));
+        return select(abs(x) < T(1e-4f), series, expm1(x) / x);
     }
 
-    // Optical depth per unit σ from height y0 along unit direction d for distance s (s may be +∞).
-    float opticalDepth(float y0, float dy, float s) const {
+    // Optical depth per unit σ from height y0 along unit direction with y component dy, over a
+    // finite distance s.
+    template <class T>
+    T opticalDepth(float y0, T dy, T s) const {
         if (!height) return s;
-        const float base = std::exp(b * y0);
-        const float k = b * dy;
-        if (std::isinf(s)) return k < 0.0f ? base / -k : std::numeric_limits<float>::infinity();
-        return base * s * expm1OverX(k * s);
+        const T k = T(b) * dy;
+        return T(std::exp(b * y0)) * s * expm1OverX(k * s);
+    }
+    // The same to s = ∞: e^{b·y0}/(−k) for a ray rising into thinning fog (k < 0), else ∞.
+    template <class T>
+    T opticalDepthToInfinity(float y0, T dy) const {
+        const T inf(std::numeric_limits<float>::infinity());
+        if (!height) return inf;
+        const T k = T(b) * dy;
+        return select(k < T(0.0f), T(std::exp(b * y0)) / -k, inf);
     }
 
-    // Radiance at the eye from a surface of radiance L0 at distance s along unit direction dir.
-    glm::vec3 apply(const glm::vec3& L0, const glm::vec3& eye, const glm::vec3& dir, float s) const {
-        const float tau = opticalDepth(eye.y, dir.y, s);
-        glm::vec3 result;
+    // Radiance at the eye from a surface of radiance L0 seen through optical depth tau (may be ∞).
+    template <class T>
+    glm::vec<3, T> applyOpticalDepth(const glm::vec<3, T>& L0, T tau) const {
+        glm::vec<3, T> result;
         for (int c = 0; c < 3; ++c) {
-            const float optical = sigma[c] * tau;  // may be +∞: T = 0
-            const float t = std::isinf(optical) ? 0.0f : std::exp(-optical);
-            const float one_minus_t = std::isinf(optical) ? 1.0f : -std::expm1(-optical);
-            result[c] = L0[c] * t + (q[c] / sigma[c]) * one_minus_t;
+            const T optical = T(sigma[c]) * tau;  // ∞ gives T = e^{−∞} = 0 and 1 − T = 1
+            result[c] = L0[c] * exp(-optical) + T(q[c] / sigma[c]) * -expm1(-optical);
         }
         return result;
+    }
+
+    // Radiance at the eye from a surface of radiance L0 at distance s (s may be +∞) along unit dir.
+    glm::vec3 apply(const glm::vec3& L0, const glm::vec3& eye, const glm::vec3& dir, float s) const {
+        const float tau = std::isinf(s) ? opticalDepthToInfinity(eye.y, dir.y) : opticalDepth(eye.y, dir.y, s);
+        return applyOpticalDepth(L0, tau);
+    }
+    float opticalDepth(float y0, float dy, float s) const {
+        return std::isinf(s) ? opticalDepthToInfinity(y0, dy) : opticalDepth<float>(y0, dy, s);
     }
 };
 
@@ -64,11 +81,13 @@ struct LitIn {
     RASTER_INPUT_SIGNATURE(LitIn, RASTER_INPUT(position, "POSITION", 0), RASTER_INPUT(normal, "NORMAL", 0))
 };
 
-struct LitVertex {
-    glm::vec4 position;
-    glm::vec3 worldPos;
-    glm::vec3 normal;
+template <class T>
+struct LitVertexT {
+    glm::vec<4, T> position;
+    glm::vec<3, T> worldPos;
+    glm::vec<3, T> normal;
 };
+using LitVertex = LitVertexT<float>;
 
 struct VsLit {
     glm::mat4 viewProj{1.0f};
@@ -78,19 +97,26 @@ struct VsLit {
 };
 
 // Diffuse surface, L0 = albedo·(ambient + (1 − ambient)·max(0, n·l)), seen through the fog.
+// Written over its scalar type, so the pipeline runs it eight pixels wide (simd.hpp).
 struct PsFog {
+    using Input = LitVertex;
     FogMedium fog;
     glm::vec3 eye{0.0f};
     glm::vec3 albedo{0.7f};
     glm::vec3 light = glm::normalize(glm::vec3(0.3f, 1.0f, 0.5f));
     float ambient = 0.2f;
 
-    glm::vec4 operator()(const LitVertex& in) const {
-        const float lambert = std::max(0.0f, glm::dot(glm::normalize(in.normal), light));
-        const glm::vec3 L0 = albedo * (ambient + (1.0f - ambient) * lambert);
-        const glm::vec3 d = in.worldPos - eye;
-        const float s = glm::length(d);
-        return glm::vec4(fog.apply(L0, eye, d / s, s), 1.0f);
+    template <class T>
+    glm::vec<4, T> operator()(const LitVertexT<T>& in) const {
+        using V3 = glm::vec<3, T>;
+        const V3 n = normalize(in.normal);
+        const T lambert = max(T(0.0f), n.x * T(light.x) + n.y * T(light.y) + n.z * T(light.z));
+        const T shade = T(ambient) + T(1.0f - ambient) * lambert;
+        const V3 L0(T(albedo.x) * shade, T(albedo.y) * shade, T(albedo.z) * shade);
+        const V3 d(in.worldPos.x - T(eye.x), in.worldPos.y - T(eye.y), in.worldPos.z - T(eye.z));
+        const T s = length(d);
+        const V3 L = fog.applyOpticalDepth(L0, fog.opticalDepth(eye.y, d.y / s, s));
+        return {L.x, L.y, L.z, T(1.0f)};
     }
 };
 
@@ -100,25 +126,38 @@ struct SkyIn {
     RASTER_INPUT_SIGNATURE(SkyIn, RASTER_INPUT(ndc, "POSITION", 0))
 };
 
-struct SkyVertex {
-    glm::vec4 position;
-    glm::vec2 ndc;
+template <class T>
+struct SkyVertexT {
+    glm::vec<4, T> position;
+    glm::vec<2, T> ndc;
 };
+using SkyVertex = SkyVertexT<float>;
 
 struct VsSky {
     SkyVertex operator()(const SkyIn& in) const { return {glm::vec4(in.ndc, 1.0f, 1.0f), in.ndc}; }
 };
 
 struct PsSky {
+    using Input = SkyVertex;
     FogMedium fog;
     glm::vec3 eye{0.0f};
     glm::mat4 invViewProj{1.0f};
 
-    glm::vec4 operator()(const SkyVertex& in) const {
-        const glm::vec4 a = invViewProj * glm::vec4(in.ndc, 0.0f, 1.0f);
-        const glm::vec4 c = invViewProj * glm::vec4(in.ndc, 1.0f, 1.0f);
-        const glm::vec3 d = glm::normalize(glm::vec3(c) / c.w - glm::vec3(a) / a.w);
-        return glm::vec4(fog.apply(glm::vec3(0.0f), eye, d, std::numeric_limits<float>::infinity()), 1.0f);
+    template <class T>
+    glm::vec<4, T> operator()(const SkyVertexT<T>& in) const {
+        using V3 = glm::vec<3, T>;
+        // The pixel's view ray: unproject its points on the near (z = 0) and far (z = 1) planes.
+        auto unproject = [&](float z) {
+            glm::vec<4, T> p;
+            for (int r = 0; r < 4; ++r)
+                p[r] = T(invViewProj[0][r]) * in.ndc.x + T(invViewProj[1][r]) * in.ndc.y +
+                       T(invViewProj[2][r] * z + invViewProj[3][r]);
+            return V3(p.x / p.w, p.y / p.w, p.z / p.w);
+        };
+        const V3 a = unproject(0.0f), c = unproject(1.0f);
+        const V3 d = normalize(V3(c.x - a.x, c.y - a.y, c.z - a.z));
+        const V3 L = fog.applyOpticalDepth(V3(T(0.0f), T(0.0f), T(0.0f)), fog.opticalDepthToInfinity(eye.y, d.y));
+        return {L.x, L.y, L.z, T(1.0f)};
     }
 };
 

@@ -57,8 +57,8 @@ inline Int8 toUnorm8x8(Float8 v) { return toInt(saturate8(v) * Float8(255.0f) + 
 struct DepthOff {
     static constexpr bool kEnabled = false;
     static constexpr bool kWide = true;
-    uint32_t testWide(int32_t, int32_t, float) const { return 0xFF; }
-    void writeWide(int32_t, int32_t, float, uint32_t) const {}
+    uint32_t testWide(int32_t, int32_t, Float8) const { return 0xFF; }
+    void writeWide(int32_t, int32_t, Float8, uint32_t) const {}
     bool test(int32_t, int32_t, float) const { return true; }
     void write(int32_t, int32_t, float) const {}
 };
@@ -69,15 +69,15 @@ struct DepthFixed {
     static constexpr bool kWide = true;
     float* depth;
     uint32_t width;
-    uint32_t testWide(int32_t x, int32_t y, float z) const {
+    uint32_t testWide(int32_t x, int32_t y, Float8 z) const {
         const float* row0 = depth + size_t(y) * width + x;
-        return detail::depthPasses8<F>(Float8(z), detail::loadBlock(row0, row0 + width)).bits();
+        return detail::depthPasses8<F>(z, detail::loadBlock(row0, row0 + width)).bits();
     }
-    void writeWide(int32_t x, int32_t y, float z, uint32_t mask) const {
+    void writeWide(int32_t x, int32_t y, Float8 z, uint32_t mask) const {
         if constexpr (Write) {
             float* row0 = depth + size_t(y) * width + x;
             const Float8 old = detail::loadBlock(row0, row0 + width);
-            detail::storeBlock(select(Mask8::fromBits(mask), Float8(z), old), row0, row0 + width);
+            detail::storeBlock(select(Mask8::fromBits(mask), z, old), row0, row0 + width);
         }
     }
     bool test(int32_t x, int32_t y, float z) const { return depthPassesT<F>(z, depth[size_t(y) * width + x]); }

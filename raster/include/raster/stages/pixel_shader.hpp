@@ -49,7 +49,7 @@ Barycentrics<Real> barycentrics(const TriangleInterpolant<Real>& ti, int64_t e0,
 // which matters where a billboard of constant depth cuts through a sloped surface.
 template <class Real>
 Real interpolateDepth(const TriangleSetup& t, int64_t e0, int64_t e1, int64_t e2, float min_depth, float max_depth) {
-    const double z = (double(e1) * t.z[0] + double(e2) * t.z[1] + double(e0) * t.z[2]) / double(t.area2);
+    const double z = (double(e1) * t.z[0] + double(e2) * t.z[1] + double(e0) * t.z[2]) * t.invArea2;
     return Real(float(std::clamp(z, double(min_depth), double(max_depth))));
 }
 
@@ -69,6 +69,31 @@ void interpolateAttributes(const TriangleInterpolant<Real>& ti, const Barycentri
     o[2] = float(z);
     o[3] = float(w);
     for (uint32_t i = 4; i < kVertexFloats<V>; ++i) o[i] = float(f0 * Real(a0[i]) + f1 * Real(a1[i]) + f2 * Real(a2[i]));
+}
+
+// The eight-wide twin of barycentrics + interpolateAttributes for a 4×2 block at (x, y) whose
+// lanes have edge functions e[k][lane]: the same operations lane by lane, so the same bits.
+template <class V>
+void interpolateAttributesWide(const TriangleInterpolant<float>& ti, const int64_t (&e)[3][8],
+                               const V* const (&v)[3], int32_t x, int32_t y, Float8 z, Wide<V>& out) {
+    Float8 b[3];
+    for (int l = 0; l < 8; ++l) {
+        b[0].set(l, float(e[1][l]) * ti.invArea);
+        b[1].set(l, float(e[2][l]) * ti.invArea);
+        b[2].set(l, float(e[0][l]) * ti.invArea);
+    }
+    Float8 f0 = b[0] * Float8(ti.invW[0]), f1 = b[1] * Float8(ti.invW[1]), f2 = b[2] * Float8(ti.invW[2]);
+    const Float8 w = Float8(1.0f) / (f0 + f1 + f2);
+    f0 *= w, f1 *= w, f2 *= w;
+    const float* a0 = asFloats(*v[0]);
+    const float* a1 = asFloats(*v[1]);
+    const float* a2 = asFloats(*v[2]);
+    Float8* o = reinterpret_cast<Float8*>(&out);
+    o[0] = Float8(float(x)) + Float8(simd::F32x8{0, 1, 2, 3, 0, 1, 2, 3}) + Float8(0.5f);
+    o[1] = Float8(float(y)) + Float8(simd::F32x8{0, 0, 0, 0, 1, 1, 1, 1}) + Float8(0.5f);
+    o[2] = z;
+    o[3] = w;
+    for (uint32_t i = 4; i < kVertexFloats<V>; ++i) o[i] = f0 * Float8(a0[i]) + f1 * Float8(a1[i]) + f2 * Float8(a2[i]);
 }
 
 // Fills `out` for a pixel of a line at parameter t (0 at vertex 0) or of a point (one vertex).

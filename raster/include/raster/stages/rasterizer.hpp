@@ -70,6 +70,40 @@ void rasterizeTriangle(const TriangleSetup& t, const EdgeSteps& s, const PixelRe
     }
 }
 
+// The same coverage walked in 4×2 blocks (x a multiple of 4, y even) for eight-wide shading:
+// visit(x, y, mask, e) with lane l at (x + l % 4, y + l / 4), mask its covered lanes and e[k][l]
+// the edge functions at each lane's centre (without the top-left bias).
+template <class Visit>
+void rasterizeTriangleBlocks(const TriangleSetup& t, const EdgeSteps& s, const PixelRect& tile, Visit&& visit) {
+    const int32_t x0 = std::max(t.box.x0, tile.x0), x1 = std::min(t.box.x1, tile.x1);
+    const int32_t y0 = std::max(t.box.y0, tile.y0), y1 = std::min(t.box.y1, tile.y1);
+    if (x0 > x1 || y0 > y1) return;
+    const int32_t bx0 = x0 & ~3, by0 = y0 & ~1;
+    int64_t row[3];
+    for (int k = 0; k < 3; ++k) row[k] = edgeAt(t, k, bx0, by0);
+    for (int32_t y = by0; y <= y1; y += 2) {
+        const uint32_t rows = (y >= y0 ? 0x0Fu : 0u) | (y + 1 <= y1 ? 0xF0u : 0u);
+        int64_t e0[3] = {row[0], row[1], row[2]};
+        for (int32_t x = bx0; x <= x1; x += 4) {
+            uint32_t cols = 0;
+            for (int c = 0; c < 4; ++c) cols |= (x + c >= x0 && x + c <= x1) ? (0x11u << c) : 0u;
+            uint32_t mask = rows & cols;
+            int64_t e[3][8];
+            for (int k = 0; k < 3; ++k) {
+                uint32_t inside = 0;
+                for (int l = 0; l < 8; ++l) {
+                    e[k][l] = e0[k] + (l & 3) * s.dx[k] + (l >> 2) * s.dy[k];
+                    inside |= uint32_t(e[k][l] + t.bias[k] >= 0) << l;
+                }
+                mask &= inside;
+            }
+            if (mask) visit(x, y, mask, e);
+            for (int k = 0; k < 3; ++k) e0[k] += 4 * s.dx[k];
+        }
+        for (int k = 0; k < 3; ++k) row[k] += 2 * s.dy[k];
+    }
+}
+
 // Calls visit(x, y, mask) for every 2×2 quad (x, y even) of the rectangle inside `tile`, mask
 // holding the covered lanes.
 template <class Visit>

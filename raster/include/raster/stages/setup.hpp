@@ -72,6 +72,7 @@ inline int32_t lastPixel(int32_t hi) { return floorDiv(int64_t(hi) - kSubpixelHa
 struct TriangleSetup {
     int32_t x[3], y[3];
     int64_t area2;
+    double invArea2;     // 1 / area2, for depth (see interpolateDepth)
     int64_t bias[3];
     float z[3], invW[3];
     uint32_t vertex[3];  // indices of the clip-space vertices in the chunk's vertex pool
@@ -99,6 +100,7 @@ inline SetupResult setupTriangle(const ScreenVertex (&s)[3], const uint32_t (&ve
         t.vertex[k] = vertex[order[k]];
     }
     t.area2 = clockwise ? area2 : -area2;
+    t.invArea2 = 1.0 / double(t.area2);
     for (int k = 0; k < 3; ++k) {
         const int k1 = (k + 1) % 3;
         t.bias[k] = isTopLeft(t.x[k1] - t.x[k], t.y[k1] - t.y[k]) ? 0 : -1;

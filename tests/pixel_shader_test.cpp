@@ -1,0 +1,487 @@
+// The pixel shader stage through the pipeline: perspective-correct interpolation, SV_Position,
+// discard, multiple render targets, derivatives and mip selection, early depth and blend no-ops.
+#include "raster/stages/pixel_shader.hpp"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <optional>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "raster/pipeline.hpp"
+#include "raster/shader_context.hpp"
+#include "raster/shaders/basic.hpp"
+#include "raster/texture.hpp"
+
+namespace raster {
+namespace {
+
+using shaders::PositionOnly;
+using shaders::PsConstant;
+using shaders::VsTransform;
+
+const glm::vec4 kClear(0.1f, 0.2f, 0.3f, 1.0f);
+const glm::vec4 kWhite(1.0f);
+
+// NDC of pixel coordinates (x right, y down) on a w×h viewport.
+glm::vec2 ndcOf(double px, double py, double w, double h) {
+    return {float(px / w * 2.0 - 1.0), float(1.0 - py / h * 2.0)};
+}
+
+// Two triangles covering the pixel rectangle [x0, x1) × [y0, y1) of a w×h viewport at depth z.
+std::vector<glm::vec3> quad(float x0, float y0, float x1, float y1, float w, float h, float z) {
+    const glm::vec2 a = ndcOf(x0, y0, w, h), b = ndcOf(x1, y1, w, h);
+    return {{a.x, b.y, z}, {a.x, a.y, z}, {b.x, b.y, z}, {b.x, b.y, z}, {a.x, a.y, z}, {b.x, a.y, z}};
+}
+
+struct Fixture {
+    Context ctx;
+    RenderTarget color;
+    DepthTarget depth;
+    InputLayout layout;
+    VertexBuffer vb;
+    uint32_t width, height;
+    Fixture(uint32_t w, uint32_t h, Format format = Format::R8G8B8A8_UNORM)
+        : color(w, h, format), depth(w, h), width(w), height(h) {
+        color.clear(kClear);
+        depth.clear(1.0f);
+        ctx.setRenderTargets(&color, &depth);
+        ctx.setViewport({0, 0, float(w), float(h), 0, 1});
+        RasterizerState none;
+        none.cullMode = CullMode::None;
+        ctx.setRasterizerState(none);
+        ctx.setPrimitiveTopology(Topology::TriangleList);
+        const InputElementDesc desc[] = {{"POSITION", 0, Format::R32G32B32_FLOAT, 0, 0}};
+        setLayout(desc);
+    }
+    template <size_t N>
+    void setLayout(const InputElementDesc (&desc)[N]) {
+        layout = InputLayout(desc);
+        ctx.setInputLayout(&layout);
+    }
+    template <class T>
+    void setVertices(const std::vector<T>& v) {
+        vb = VertexBuffer::create(v);
+        ctx.setVertexBuffer(0, &vb);
+    }
+    // A quad over [x0, x1) × [y0, y1) drawn with ps.
+    template <class PS>
+    void drawQuad(const PS& ps, float x0, float y0, float x1, float y1, float z) {
+        setVertices(quad(x0, y0, x1, y1, float(width), float(height), z));
+        ctx.draw(VsTransform{}, ps, 6);
+    }
+};
+
+// ---- Perspective-correct interpolation ------------------------------------------------------------
+
+struct ClipWorldVertex {
+    glm::vec4 clip;
+    glm::vec3 world;
+};
+struct ClipWorldIn {
+    glm::vec4 clip;
+    glm::vec3 world;
+    RASTER_INPUT_SIGNATURE(ClipWorldIn, RASTER_INPUT(clip, "POSITION", 0), RASTER_INPUT(world, "WORLD", 0))
+};
+struct WorldVertex {
+    glm::vec4 position;
+    glm::vec3 world;
+};
+struct VsClipWorld {
+    WorldVertex operator()(const ClipWorldIn& in) const { return {in.clip, in.world}; }
+};
+struct PsWorld {
+    glm::vec4 operator()(const WorldVertex& in) const { return glm::vec4(in.world, 0.0f); }
+};
+struct PsSvPosition {
+    glm::vec4 operator()(const WorldVertex& in) const { return in.position; }
+};
+
+// A triangle with very different w per vertex under a real projection (60°, square, near 0.1,
+// far 100; the camera at the origin looking down −z, so world = view space). Its vertices are
+// chosen on screen at whole pixels, so snapping to 16.8 changes nothing, and lifted to depth w.
+struct PerspectiveTriangle {
+    static constexpr int kSize = 64;
+    glm::dmat4 proj = glm::perspectiveRH_ZO(glm::radians(60.0), 1.0, 0.1, 100.0);
+    glm::dvec2 screen[3] = {{40, 2}, {63, 62}, {36, 50}};
+    double w[3] = {0.5, 20.0, 4.0};
+    glm::dvec3 world[3];
+    glm::dvec4 clip[3];
+
+    PerspectiveTriangle() {
+        for (int k = 0; k < 3; ++k) {
+            const double nx = screen[k].x / kSize * 2 - 1, ny = 1 - screen[k].y / kSize * 2;
+            world[k] = {nx * w[k] / proj[0][0], ny * w[k] / proj[1][1], -w[k]};
+            clip[k] = proj * glm::dvec4(world[k], 1.0);
+        }
+    }
+    std::vector<ClipWorldVertex> vertices() const {
+        std::vector<ClipWorldVertex> v;
+        for (int k = 0; k < 3; ++k) v.push_back({glm::vec4(clip[k]), glm::vec3(world[k])});
+        return v;
+    }
+    // The point of the triangle's plane seen through pixel (i, j)'s centre.
+    glm::dvec3 hit(int i, int j) const {
+        const double nx = (i + 0.5) / kSize * 2 - 1, ny = 1 - (j + 0.5) / kSize * 2;
+        const glm::dvec3 d(nx / proj[0][0], ny / proj[1][1], -1.0);
+        const glm::dvec3 n = glm::cross(world[1] - world[0], world[2] - world[0]);
+        return d * (glm::dot(n, world[0]) / glm::dot(n, d));
+    }
+    // Screen-space barycentrics of pixel (i, j)'s centre.
+    glm::dvec3 screenBarycentrics(int i, int j) const {
+        const glm::dvec2 p(i + 0.5, j + 0.5);
+        auto cross2 = [](glm::dvec2 a, glm::dvec2 b) { return a.x * b.y - a.y * b.x; };
+        const double area = cross2(screen[1] - screen[0], screen[2] - screen[0]);
+        return {cross2(screen[1] - p, screen[2] - p) / area, cross2(screen[2] - p, screen[0] - p) / area,
+                cross2(screen[0] - p, screen[1] - p) / area};
+    }
+    double ndcZ(int k) const { return clip[k].z / clip[k].w; }
+};
+
+struct PerspectiveFixture : Fixture {
+    PerspectiveTriangle tri;
+    PerspectiveFixture() : Fixture(PerspectiveTriangle::kSize, PerspectiveTriangle::kSize, Format::R32G32B32A32_FLOAT) {
+        color.clear(glm::vec4(-1000.0f));
+        const InputElementDesc desc[] = {{"POSITION", 0, Format::R32G32B32A32_FLOAT, 0, 0},
+                                         {"WORLD", 0, Format::R32G32B32_FLOAT, 0, 16}};
+        setLayout(desc);
+        setVertices(tri.vertices());
+    }
+    bool covered(int i, int j) const { return color.load(i, j).x != -1000.0f; }
+};
+
+TEST(PixelShader, InterpolationIsPerspectiveCorrect) {
+    PerspectiveFixture f;
+    for (int k = 0; k < 3; ++k) ASSERT_DOUBLE_EQ(f.tri.clip[k].w, f.tri.w[k]);
+    f.ctx.draw(VsClipWorld{}, PsWorld{}, 3);
+    int pixels = 0;
+    double worstPerspective = 0, worstScreenLinear = 0;
+    for (int j = 0; j < PerspectiveTriangle::kSize; ++j) {
+        for (int i = 0; i < PerspectiveTriangle::kSize; ++i) {
+            if (!f.covered(i, j)) continue;
+            ++pixels;
+            const glm::dvec3 exact = f.tri.hit(i, j);
+            const glm::vec4 got = f.color.load(i, j);
+            // World x and z (= −w) are linear in world space and bounded away from 0 here.
+            const double relX = std::abs(got.x - exact.x) / std::abs(exact.x);
+            const double relZ = std::abs(got.z - exact.z) / std::abs(exact.z);
+            EXPECT_LE(relX, 1e-4) << "pixel " << i << "," << j << ": " << got.x << " vs " << exact.x;
+            EXPECT_LE(relZ, 1e-4) << "pixel " << i << "," << j << ": " << got.z << " vs " << exact.z;
+            worstPerspective = std::max({worstPerspective, relX, relZ});
+            // What interpolating linearly in screen space would have given.
+            const glm::dvec3 b = f.tri.screenBarycentrics(i, j);
+            const double linearX = b.x * f.tri.world[0].x + b.y * f.tri.world[1].x + b.z * f.tri.world[2].x;
+            worstScreenLinear = std::max(worstScreenLinear, std::abs(linearX - exact.x) / std::abs(exact.x));
+        }
+    }
+    EXPECT_GT(pixels, 300);
+    EXPECT_EQ(uint64_t(pixels), f.ctx.drawStatistics().psInvocations);
+    // Screen-linear interpolation is wrong by far more than the tolerance (over 50 % somewhere).
+    EXPECT_GT(worstScreenLinear, 0.5) << "the test triangle does not distinguish the two interpolations";
+    EXPECT_LT(worstPerspective, 1e-4);
+}
+
+TEST(PixelShader, SvPositionIsPixelCentreDepthAndW) {
+    PerspectiveFixture f;
+    f.ctx.draw(VsClipWorld{}, PsSvPosition{}, 3);
+    int pixels = 0;
+    for (int j = 0; j < PerspectiveTriangle::kSize; ++j) {
+        for (int i = 0; i < PerspectiveTriangle::kSize; ++i) {
+            if (!f.covered(i, j)) {
+                EXPECT_EQ(f.depth.load(i, j), 1.0f);
+                continue;
+            }
+            ++pixels;
+            const glm::vec4 p = f.color.load(i, j);
+            EXPECT_EQ(p.x, float(i) + 0.5f);
+            EXPECT_EQ(p.y, float(j) + 0.5f);
+            EXPECT_EQ(p.z, f.depth.load(i, j)) << "z is the depth written, pixel " << i << "," << j;
+            // Depth is linear in screen space.
+            const glm::dvec3 b = f.tri.screenBarycentrics(i, j);
+            const double z = b.x * f.tri.ndcZ(0) + b.y * f.tri.ndcZ(1) + b.z * f.tri.ndcZ(2);
+            EXPECT_NEAR(p.z, z, 1e-6) << i << "," << j;
+            // w is the view depth of the point seen, −z_view.
+            const double w = -f.tri.hit(i, j).z;
+            EXPECT_LE(std::abs(p.w - w) / w, 1e-4) << i << "," << j << ": " << p.w << " vs " << w;
+        }
+    }
+    EXPECT_GT(pixels, 300);
+}
+
+// ---- Discard -------------------------------------------------------------------------------------------
+
+struct PsCheckerDiscard {
+    std::optional<glm::vec4> operator()(const PositionOnly& in) const {
+        const int x = int(in.position.x), y = int(in.position.y);
+        if ((x + y) % 2 == 1) return std::nullopt;
+        return kWhite;
+    }
+};
+
+TEST(PixelShader, DiscardKeepsColourAndDepth) {
+    Fixture f(16, 16);
+    f.drawQuad(PsCheckerDiscard{}, 0, 0, 16, 16, 0.5f);
+    const PipelineStatistics s = f.ctx.drawStatistics();
+    EXPECT_EQ(s.psInvocations, 256u);
+    EXPECT_EQ(s.fragmentsDiscarded, 128u);
+    for (uint32_t y = 0; y < 16; ++y) {
+        for (uint32_t x = 0; x < 16; ++x) {
+            const bool kept = (x + y) % 2 == 0;
+            EXPECT_EQ(f.color.load(x, y), kept ? kWhite : f.color.load(0, 1)) << x << "," << y;
+            EXPECT_EQ(f.depth.load(x, y), kept ? 0.5f : 1.0f) << x << "," << y;
+        }
+    }
+    EXPECT_NE(f.color.load(0, 1), kWhite);
+    // A quad behind then fills exactly the discarded pixels: their depth was never written.
+    const glm::vec4 red(1, 0, 0, 1);
+    f.drawQuad(PsConstant{red}, 0, 0, 16, 16, 0.7f);
+    EXPECT_EQ(f.ctx.drawStatistics().psInvocations, 128u);
+    EXPECT_EQ(f.ctx.drawStatistics().fragmentsEarlyDepthKilled, 128u);
+    for (uint32_t y = 0; y < 16; ++y)
+        for (uint32_t x = 0; x < 16; ++x) EXPECT_EQ(f.color.load(x, y), (x + y) % 2 ? red : kWhite) << x << "," << y;
+}
+
+// ---- Multiple render targets --------------------------------------------------------------------------
+
+struct PsTwoTargets {
+    std::array<glm::vec4, 2> operator()(const PositionOnly& in) const {
+        return {glm::vec4(1, 0, 0, 1), glm::vec4(in.position.x, in.position.y, in.position.z, 2.0f)};
+    }
+};
+
+TEST(PixelShader, MultipleRenderTargetsGetTheirOwnColour) {
+    Fixture f(8, 8);
+    RenderTarget second(8, 8, Format::R32G32B32A32_FLOAT);
+    second.clear(glm::vec4(-1.0f));
+    RenderTarget* const targets[] = {&f.color, &second};
+    f.ctx.setRenderTargets(targets, &f.depth);
+    f.drawQuad(PsTwoTargets{}, 2, 0, 8, 8, 0.25f);
+    for (uint32_t y = 0; y < 8; ++y) {
+        for (uint32_t x = 0; x < 8; ++x) {
+            if (x < 2) {
+                EXPECT_EQ(second.load(x, y), glm::vec4(-1.0f));
+                EXPECT_NE(f.color.load(x, y), glm::vec4(1, 0, 0, 1));
+                continue;
+            }
+            EXPECT_EQ(f.color.load(x, y), glm::vec4(1, 0, 0, 1)) << x << "," << y;
+            EXPECT_EQ(second.load(x, y), glm::vec4(float(x) + 0.5f, float(y) + 0.5f, 0.25f, 2.0f)) << x << "," << y;
+        }
+    }
+    // A write mask per target with independent blending.
+    BlendState masks;
+    masks.independentBlendEnable = true;
+    masks.renderTarget[1].renderTargetWriteMask = 0x8;  // alpha only
+    f.ctx.setBlendState(masks);
+    second.clear(glm::vec4(-1.0f));
+    f.depth.clear(1.0f);
+    f.drawQuad(PsTwoTargets{}, 0, 0, 8, 8, 0.25f);
+    EXPECT_EQ(second.load(5, 5), glm::vec4(-1, -1, -1, 2));
+    EXPECT_EQ(f.color.load(0, 0), glm::vec4(1, 0, 0, 1));
+}
+
+// ---- Derivatives -----------------------------------------------------------------------------------------
+
+struct UvIn {
+    glm::vec3 position;
+    glm::vec2 uv;
+    RASTER_INPUT_SIGNATURE(UvIn, RASTER_INPUT(position, "POSITION", 0), RASTER_INPUT(uv, "TEXCOORD", 0))
+};
+struct UvVertexData {
+    glm::vec3 position;
+    glm::vec2 uv;
+};
+struct UvVertex {
+    glm::vec4 position;
+    glm::vec2 uv;
+};
+struct VsUv {
+    UvVertex operator()(const UvIn& in) const { return {glm::vec4(in.position, 1.0f), in.uv}; }
+};
+struct PsDerivatives {
+    glm::vec4 operator()(const UvVertex& in) const { return glm::vec4(ddx(in.uv), ddy(in.uv)); }
+};
+struct PsUvPlain {
+    glm::vec4 operator()(const UvVertex& in) const { return glm::vec4(in.uv, 0.0f, 1.0f); }
+};
+struct PsSample {
+    const Texture2D* texture = nullptr;
+    SamplerState sampler;
+    glm::vec4 operator()(const UvVertex& in) const { return texture->Sample(sampler, in.uv); }
+};
+
+// A full-target quad whose uv is the pixel position times `scale`.
+struct UvFixture : Fixture {
+    UvFixture(uint32_t size, float scale) : Fixture(size, size, Format::R32G32B32A32_FLOAT) {
+        const InputElementDesc desc[] = {{"POSITION", 0, Format::R32G32B32_FLOAT, 0, 0},
+                                         {"TEXCOORD", 0, Format::R32G32_FLOAT, 0, 12}};
+        setLayout(desc);
+        ctx.setDepthStencilState(DepthStencilState::disabled());  // the tests draw the same plane again
+        const float s = float(size);
+        const std::vector<glm::vec3> p = quad(0, 0, s, s, s, s, 0.5f);
+        std::vector<UvVertexData> v;
+        for (const glm::vec3& q : p) {
+            const glm::vec2 pixel((q.x + 1.0f) / 2.0f * s, (1.0f - q.y) / 2.0f * s);
+            v.push_back({q, pixel * scale});
+        }
+        setVertices(v);
+    }
+    template <class PS>
+    void draw(const PS& ps) {
+        ctx.draw(VsUv{}, ps, 6);
+    }
+};
+
+TEST(PixelShader, DdxDdyOfScreenLinearUv) {
+    UvFixture f(32, 1.0f / 8.0f);
+    f.draw(PsDerivatives{});
+    for (uint32_t y = 0; y < 32; ++y) {
+        for (uint32_t x = 0; x < 32; ++x) {
+            const glm::vec4 g = f.color.load(x, y);
+            EXPECT_NEAR(g.x, 0.125f, 1e-6f) << x << "," << y;  // du/dx
+            EXPECT_NEAR(g.y, 0.0f, 1e-6f) << x << "," << y;    // dv/dx
+            EXPECT_NEAR(g.z, 0.0f, 1e-6f) << x << "," << y;    // du/dy
+            EXPECT_NEAR(g.w, 0.125f, 1e-6f) << x << "," << y;  // dv/dy
+        }
+    }
+    const PipelineStatistics s = f.ctx.drawStatistics();
+    EXPECT_EQ(s.psInvocations, 32u * 32u);
+    EXPECT_GT(s.derivativeReplays, 0u);
+    EXPECT_GT(s.helperInvocations, 0u) << "quads on the diagonal are half covered by each triangle";
+
+    f.draw(PsUvPlain{});
+    EXPECT_EQ(f.ctx.drawStatistics().derivativeReplays, 0u);
+    EXPECT_EQ(f.ctx.drawStatistics().helperInvocations, 0u);
+    EXPECT_EQ(f.ctx.drawStatistics().psInvocations, 32u * 32u);
+    EXPECT_NEAR(f.color.load(9, 3).x, 9.5f / 8.0f, 1e-6f);
+}
+
+// 64×64 float texture with a mip chain whose levels tell themselves apart: R is a 1-texel checker,
+// G a 2-texel one, B a 4-texel one. Box filtering turns a checker into 0.5 once a texel covers a
+// whole period, so level 0 has R in {0, 1}; level 1 R = 0.5 and G in {0, 1}; level 2 R = G = 0.5 and
+// B in {0, 1} (B = (X + Y) & 1 at level 2's texel (X, Y)); level 3 and above are all 0.5.
+Texture2D levelCheckerTexture() {
+    std::vector<float> rgba;
+    for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 64; ++x)
+            rgba.insert(rgba.end(), {float((x + y) & 1), float((x / 2 + y / 2) & 1), float((x / 4 + y / 4) & 1), 1.0f});
+    return Texture2D::fromRgba32f(64, 64, rgba, true);
+}
+
+int levelOf(const glm::vec4& c) {
+    if (c.r != 0.5f) return 0;
+    if (c.g != 0.5f) return 1;
+    if (c.b != 0.5f) return 2;
+    return 3;
+}
+
+TEST(PixelShader, SampleSelectsTheMipLevelFromDerivatives) {
+    const Texture2D texture = levelCheckerTexture();
+    ASSERT_EQ(texture.mipLevels(), 7u);
+    ASSERT_EQ(texture.load(0, 0, 1), glm::vec4(0.5f, 0.0f, 0.0f, 1.0f));
+    const PsSample ps{&texture, SamplerState::point(AddressMode::Wrap)};
+    // texelsPerPixel → level: 1 → 0, 2 → 1, 4 → 2, 8 → 3.
+    for (int level = 0; level <= 3; ++level) {
+        const float texelsPerPixel = float(1 << level);
+        UvFixture f(32, texelsPerPixel / 64.0f);
+        f.draw(ps);
+        for (uint32_t y = 0; y < 32; ++y)
+            for (uint32_t x = 0; x < 32; ++x)
+                ASSERT_EQ(levelOf(f.color.load(x, y)), level) << "pixel " << x << "," << y << " at " << texelsPerPixel
+                                                              << " texels per pixel";
+        EXPECT_GT(f.ctx.drawStatistics().derivativeReplays, 0u);
+        if (level == 2) {
+            // Pixel i reads level 2's texel i mod 16 (uv·16 = i + 0.5).
+            for (uint32_t y = 0; y < 32; ++y)
+                for (uint32_t x = 0; x < 32; ++x) EXPECT_EQ(f.color.load(x, y).b, float((x + y) & 1)) << x << "," << y;
+        }
+    }
+}
+
+TEST(PixelShader, TrilinearBlendsLevelsPointMipPicksTheNearest) {
+    // 3 texels per pixel: λ = log2 3 ≈ 1.585. Point mip filter: level round(λ) = 2. Linear: level 1
+    // and level 2 blended with weight frac(λ) = 0.585, so G = G1 + (0.5 − G1)·0.585 with G1 in {0, 1}:
+    // |G − 0.5| = 0.5·(1 − 0.585).
+    const Texture2D texture = levelCheckerTexture();
+    const float lambda = std::log2(3.0f);
+    SamplerState pointMip = SamplerState::point(AddressMode::Wrap);
+    SamplerState linearMip = pointMip;
+    linearMip.mipFilter = Filter::Linear;
+
+    UvFixture p(32, 3.0f / 64.0f);
+    p.draw(PsSample{&texture, pointMip});
+    UvFixture l(32, 3.0f / 64.0f);
+    l.draw(PsSample{&texture, linearMip});
+    const float expected = 0.5f * (1.0f - (lambda - 1.0f));
+    for (uint32_t y = 0; y < 32; ++y) {
+        for (uint32_t x = 0; x < 32; ++x) {
+            ASSERT_EQ(levelOf(p.color.load(x, y)), 2) << x << "," << y;
+            const glm::vec4 c = l.color.load(x, y);
+            EXPECT_EQ(c.r, 0.5f);
+            EXPECT_NEAR(std::abs(c.g - 0.5f), expected, 1e-3f) << x << "," << y;
+        }
+    }
+}
+
+TEST(PixelShader, HelpersAndReplaysOnlyWhenDerivativesAreAsked) {
+    // One level and one filter: Sample takes no derivative.
+    std::vector<float> rgba(16 * 16 * 4, 0.5f);
+    const Texture2D flat = Texture2D::fromRgba32f(16, 16, rgba);
+    const Texture2D mipped = Texture2D::fromRgba32f(16, 16, rgba, true);
+    UvFixture f(32, 1.0f / 32.0f);
+    f.draw(PsSample{&flat, SamplerState::bilinear()});
+    EXPECT_EQ(f.ctx.drawStatistics().derivativeReplays, 0u);
+    EXPECT_EQ(f.ctx.drawStatistics().helperInvocations, 0u);
+    f.draw(PsSample{&mipped, SamplerState::bilinear()});
+    EXPECT_GT(f.ctx.drawStatistics().derivativeReplays, 0u);
+    EXPECT_GT(f.ctx.drawStatistics().helperInvocations, 0u);
+    f.drawQuad(PsConstant{kWhite}, 0, 0, 32, 32, 0.5f);
+    EXPECT_EQ(f.ctx.drawStatistics().derivativeReplays, 0u);
+    EXPECT_EQ(f.ctx.drawStatistics().helperInvocations, 0u);
+    EXPECT_EQ(f.ctx.drawStatistics().psInvocations, 32u * 32u);
+}
+
+// ---- Early depth and blend no-ops ------------------------------------------------------------------
+
+TEST(PixelShader, OccludedFragmentsNeverRunTheShader) {
+    Fixture f(16, 16);
+    f.drawQuad(PsConstant{kWhite}, 0, 0, 16, 16, 0.3f);
+    EXPECT_EQ(f.ctx.drawStatistics().psInvocations, 256u);
+    const RenderTarget before = f.color;
+    f.drawQuad(PsConstant{glm::vec4(1, 0, 0, 1)}, 4, 4, 12, 12, 0.6f);
+    EXPECT_EQ(f.ctx.drawStatistics().psInvocations, 0u);
+    EXPECT_EQ(f.ctx.drawStatistics().fragmentsEarlyDepthKilled, 64u);
+    EXPECT_EQ(f.ctx.drawStatistics().helperInvocations, 0u);
+    EXPECT_TRUE(f.color == before);
+    // In front, it runs and is not killed.
+    f.drawQuad(PsConstant{glm::vec4(1, 0, 0, 1)}, 4, 4, 12, 12, 0.2f);
+    EXPECT_EQ(f.ctx.drawStatistics().psInvocations, 64u);
+    EXPECT_EQ(f.ctx.drawStatistics().fragmentsEarlyDepthKilled, 0u);
+    EXPECT_EQ(f.color.load(4, 4), glm::vec4(1, 0, 0, 1));
+    EXPECT_EQ(f.color.load(3, 4), kWhite);
+}
+
+TEST(PixelShader, ZeroAlphaAdditiveFragmentsAreBlendNoOps) {
+    Fixture f(16, 16);
+    f.color.clear({0.2f, 0.4f, 0.6f, 0.8f});
+    f.ctx.setBlendState(BlendState::additive());
+    f.ctx.setDepthStencilState(DepthStencilState::readOnly());
+    const RenderTarget before = f.color;
+    for (const float alpha : {0.0f, -1.0f, -0.0f}) {
+        f.drawQuad(PsConstant{glm::vec4(1, 1, 1, alpha)}, 0, 0, 16, 16, 0.5f);
+        EXPECT_EQ(f.ctx.drawStatistics().psInvocations, 256u) << alpha;
+        EXPECT_EQ(f.ctx.drawStatistics().fragmentsBlendNoOp, 256u) << alpha;
+        EXPECT_TRUE(f.color == before) << alpha;
+    }
+    // A visible alpha is not a no-op: red 51/255 + 1·0.25 = 0.45 → byte 114.75 → 115.
+    f.drawQuad(PsConstant{glm::vec4(1, 1, 1, 0.25f)}, 0, 0, 8, 16, 0.5f);
+    EXPECT_EQ(f.ctx.drawStatistics().fragmentsBlendNoOp, 0u);
+    EXPECT_EQ(f.ctx.drawStatistics().psInvocations, 8u * 16u);
+    EXPECT_EQ(f.color.rgba8()[0], 115);
+    EXPECT_EQ(f.color.rgba8()[4 * 8], before.rgba8()[4 * 8]);
+}
+
+}  // namespace
+}  // namespace raster
