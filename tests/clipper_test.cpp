@@ -8,13 +8,12 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <glm/gtc/matrix_transform.hpp>
 #include <limits>
 #include <random>
 #include <span>
 #include <string>
 #include <vector>
-
-#include <glm/gtc/matrix_transform.hpp>
 
 #include "raster/pipeline.hpp"
 
@@ -32,14 +31,20 @@ struct V {
 };
 
 // An attribute linear in clip space: every vertex the clipper makes must keep it.
-float linearAttribute(const glm::vec4& p) { return 3 * p.x + 5 * p.y + 7 * p.z + 11 * p.w; }
-V linearVertex(const glm::vec4& p) { return {p, linearAttribute(p)}; }
+float linearAttribute(const glm::vec4& p) {
+    return 3 * p.x + 5 * p.y + 7 * p.z + 11 * p.w;
+}
+V linearVertex(const glm::vec4& p) {
+    return {p, linearAttribute(p)};
+}
 
 std::vector<std::array<V, 3>> clipTriangle(const V& v0, const V& v1, const V& v2, uint32_t cut,
                                            const ClipPlanes& planes = {}, int* returned = nullptr) {
     const V* const in[3] = {&v0, &v1, &v2};
     std::vector<std::array<V, 3>> out;
-    const int n = clipPrimitive<3>(in, cut, planes, [&](const V* const* t) { out.push_back({*t[0], *t[1], *t[2]}); });
+    const int n = clipPrimitive<3>(in, cut, planes, [&](const V* const* t) {
+        out.push_back({*t[0], *t[1], *t[2]});
+    });
     if (returned) *returned = n;
     EXPECT_EQ(size_t(n), out.size());
     return out;
@@ -47,18 +52,23 @@ std::vector<std::array<V, 3>> clipTriangle(const V& v0, const V& v1, const V& v2
 
 // Twice the signed area in NDC (x/w, y/w).
 double signedArea(const std::array<V, 3>& t) {
-    auto ndc = [](const V& v) { return glm::dvec2(v.position.x / v.position.w, v.position.y / v.position.w); };
+    auto ndc = [](const V& v) {
+        return glm::dvec2(v.position.x / v.position.w, v.position.y / v.position.w);
+    };
     const glm::dvec2 a = ndc(t[0]), b = ndc(t[1]), c = ndc(t[2]);
     return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
 }
 
-bool sameBits(const V& a, const V& b) { return std::memcmp(&a, &b, sizeof(V)) == 0; }
+bool sameBits(const V& a, const V& b) {
+    return std::memcmp(&a, &b, sizeof(V)) == 0;
+}
 
 std::vector<V> distinctVertices(const std::vector<std::array<V, 3>>& tris) {
     std::vector<V> out;
     for (const auto& t : tris)
         for (const V& v : t)
-            if (std::none_of(out.begin(), out.end(), [&](const V& o) { return sameBits(o, v); })) out.push_back(v);
+            if (std::none_of(out.begin(), out.end(), [&](const V& o) { return sameBits(o, v); }))
+                out.push_back(v);
     return out;
 }
 
@@ -137,7 +147,8 @@ TEST(ClipPrimitive, InsideUnchangedOutsideGone) {
 
 TEST(ClipPrimitive, NearAndFarTogetherMakeAPentagon) {
     const ClipPlanes planes;  // depthClip on
-    const V v0 = linearVertex({0, 0, -1, 1}), v1 = linearVertex({1, 0, 2, 1}), v2 = linearVertex({0, 1, 0.5f, 1});
+    const V v0 = linearVertex({0, 0, -1, 1}), v1 = linearVertex({1, 0, 2, 1}),
+            v2 = linearVertex({0, 1, 0.5f, 1});
     const auto tris = clipTriangle(v0, v1, v2, kClipNear | kClipFar, planes);
     ASSERT_EQ(tris.size(), 3u);
     const auto verts = distinctVertices(tris);
@@ -159,7 +170,8 @@ TEST(ClipPrimitive, GuardPlanesAreScaledByW) {
     ClipPlanes planes;
     planes.guardX = 2, planes.guardY = 3;
     // v1 at x = 8 with w = 2 is beyond x = 2w = 4.
-    const V v0 = linearVertex({0, 0, 0.5f, 1}), v1 = linearVertex({8, 0, 0.5f, 2}), v2 = linearVertex({0, 1, 0.5f, 1});
+    const V v0 = linearVertex({0, 0, 0.5f, 1}), v1 = linearVertex({8, 0, 0.5f, 2}),
+            v2 = linearVertex({0, 1, 0.5f, 1});
     ASSERT_EQ(outcode(v1.position, planes) & kClipPlanesMask, uint32_t(kClipGuardRight));
     ASSERT_EQ(outcode(v0.position, planes) & kClipPlanesMask, 0u);
     const auto tris = clipTriangle(v0, v1, v2, kClipGuardRight, planes);
@@ -188,7 +200,8 @@ TEST(ClipPrimitive, SharedEdgeGetsBitIdenticalCutsWhicheverWayItRuns) {
         const auto second = distinctVertices(clipTriangle(q, p, s, kClipNear));
         // Where the edge meets z = 0, in double.
         const double t = double(q.position.z) / (double(q.position.z) - double(p.position.z));
-        const glm::dvec4 expected = glm::dvec4(q.position) + t * (glm::dvec4(p.position) - glm::dvec4(q.position));
+        const glm::dvec4 expected =
+            glm::dvec4(q.position) + t * (glm::dvec4(p.position) - glm::dvec4(q.position));
         auto closest = [&](const std::vector<V>& vs) {
             const V* best = nullptr;
             double best_d = 1e30;
@@ -202,7 +215,8 @@ TEST(ClipPrimitive, SharedEdgeGetsBitIdenticalCutsWhicheverWayItRuns) {
         const V* a = closest(first);
         const V* b = closest(second);
         ASSERT_TRUE(a && b);
-        EXPECT_TRUE(sameBits(*a, *b)) << "case " << n << ": the shared edge's cut differs between its triangles";
+        EXPECT_TRUE(sameBits(*a, *b))
+            << "case " << n << ": the shared edge's cut differs between its triangles";
     }
 }
 
@@ -210,7 +224,11 @@ TEST(ClipPrimitive, LinesAreCutAtThePlane) {
     const V a = linearVertex({0, 0, -1, 1}), b = linearVertex({2, 2, 3, 2});
     const V* const in[2] = {&a, &b};
     std::vector<V> out;
-    EXPECT_EQ(clipPrimitive<2>(in, kClipNear, ClipPlanes{}, [&](const V* const* l) { out = {*l[0], *l[1]}; }), 1);
+    EXPECT_EQ(clipPrimitive<2>(in, kClipNear, ClipPlanes{},
+                               [&](const V* const* l) {
+                                   out = {*l[0], *l[1]};
+                               }),
+              1);
     ASSERT_EQ(out.size(), 2u);
     // From b (distance 3) towards a (distance -1): t = 3/4, (0.5, 0.5, 0, 1.25).
     expectVertex(out[0], {0.5f, 0.5f, 0, 1.25f}, linearAttribute({0.5f, 0.5f, 0, 1.25f}), "cut end");
@@ -240,9 +258,12 @@ const InputElementDesc kLayout[] = {
 
 // A context drawing clip positions into a float target with additive counting and, optionally, depth.
 class Rig {
-public:
+  public:
     Rig(uint32_t width, uint32_t height)
-        : ctx_({.threads = 2}), layout_(kLayout), color_(width, height, Format::R32G32B32A32_FLOAT), depth_(width, height) {
+        : ctx_({.threads = 2}),
+          layout_(kLayout),
+          color_(width, height, Format::R32G32B32A32_FLOAT),
+          depth_(width, height) {
         ctx_.setInputLayout(&layout_);
         ctx_.setRenderTargets(&color_, &depth_);
         ctx_.setViewport({0, 0, float(width), float(height), 0, 1});
@@ -282,7 +303,7 @@ public:
     }
     const PipelineStatistics& stats() const { return ctx_.drawStatistics(); }
 
-private:
+  private:
     Context ctx_;
     InputLayout layout_;
     RenderTarget color_;
@@ -319,7 +340,9 @@ void expectRegion(const Rig& rig, Inside inside, const std::string& what, int* i
 // A perspective camera at the origin looking down -z (view = identity).
 struct Camera {
     double fovy, aspect, zNear, zFar;
-    glm::mat4 proj() const { return glm::perspectiveRH_ZO(float(fovy), float(aspect), float(zNear), float(zFar)); }
+    glm::mat4 proj() const {
+        return glm::perspectiveRH_ZO(float(fovy), float(aspect), float(zNear), float(zFar));
+    }
     // The view-space ray through screen point (sx, sy), with direction z = -1.
     glm::dvec3 ray(double sx, double sy, int width, int height) const {
         const double t = std::tan(fovy / 2);
@@ -335,7 +358,8 @@ TEST(NearPlane, TriangleWithOneVertexBehindIsCutIntoTwo) {
     Rig rig(W, H);
     rig.useDepth();
     const glm::mat4 proj = cam.proj();
-    rig.draw({proj * glm::vec4(glm::vec3(A), 1), proj * glm::vec4(glm::vec3(B), 1), proj * glm::vec4(glm::vec3(C), 1)});
+    rig.draw({proj * glm::vec4(glm::vec3(A), 1), proj * glm::vec4(glm::vec3(B), 1),
+              proj * glm::vec4(glm::vec3(C), 1)});
     EXPECT_EQ(rig.stats().cInvocations, 1u);
     EXPECT_EQ(rig.stats().primitivesClipped, 1u);
     EXPECT_EQ(rig.stats().cPrimitives, 2u);
@@ -420,8 +444,12 @@ TEST(NearPlane, GroundPlaneCrossingNearCoversEverythingBelowTheHorizon) {
 std::vector<glm::vec4> farTriangle() {
     return {screenClip(4, 4, 0.2, 64, 64), screenClip(60, 4, 1.8, 64, 64), screenClip(4, 60, 0.2, 64, 64)};
 }
-bool inFarTriangle(int i, int j) { return i >= 4 && j >= 4 && i + j < 63; }  // x + y = 64 is a right edge
-double farPlaneZ(int i) { return 0.2 + 1.6 * (i + 0.5 - 4) / 56; }
+bool inFarTriangle(int i, int j) {
+    return i >= 4 && j >= 4 && i + j < 63;
+}  // x + y = 64 is a right edge
+double farPlaneZ(int i) {
+    return 0.2 + 1.6 * (i + 0.5 - 4) / 56;
+}
 
 TEST(FarPlane, CutWithDepthClip) {
     Rig rig(64, 64);
@@ -455,7 +483,8 @@ TEST(FarPlane, ClampedToMaxDepthWithoutDepthClip) {
             const bool in = inFarTriangle(i, j);
             ASSERT_EQ(rig.count(i, j), in ? 1.0f : 0.0f) << i << ", " << j;
             if (in) {
-                EXPECT_NEAR(rig.depth().load(i, j), std::min(0.8 * farPlaneZ(i), 0.8), 1e-6) << i << ", " << j;
+                EXPECT_NEAR(rig.depth().load(i, j), std::min(0.8 * farPlaneZ(i), 0.8), 1e-6)
+                    << i << ", " << j;
             }
         }
     EXPECT_EQ(rig.depth().load(50, 8), 0.8f);  // beyond the far plane: exactly maxDepth
@@ -545,7 +574,8 @@ TEST(GuardBand, OneVertexBeyondTheBandKeepsTheVisibleShape) {
 TEST(ClipLines, CutAtTheGuardBandAndTheNearPlaneKeepTheirPixels) {
     {  // From (5.5, 10.5) to a million pixels to the right: cut at the guard band, row 10 from x = 5.
         Rig rig(64, 64);
-        rig.draw({screenClip(5.5, 10.5, 0.5, 64, 64), screenClip(5.5 + 1e6, 10.5, 0.5, 64, 64)}, Topology::LineList);
+        rig.draw({screenClip(5.5, 10.5, 0.5, 64, 64), screenClip(5.5 + 1e6, 10.5, 0.5, 64, 64)},
+                 Topology::LineList);
         EXPECT_EQ(rig.stats().primitivesClipped, 1u);
         EXPECT_EQ(rig.stats().cPrimitives, 1u);
         for (int x = 0; x < 64; ++x) EXPECT_EQ(rig.count(x, 10), x >= 5 ? 1.0f : 0.0f) << x;
@@ -563,7 +593,8 @@ TEST(ClipLines, CutAtTheGuardBandAndTheNearPlaneKeepTheirPixels) {
         EXPECT_EQ(rig.stats().cPrimitives, 1u);
         const int first = 16, last = 31;
         for (int x = 0; x < 64; ++x)
-            EXPECT_EQ(rig.count(x, 32), x >= first && x <= last ? 1.0f : 0.0f) << x << (reversed ? " reversed" : "");
+            EXPECT_EQ(rig.count(x, 32), x >= first && x <= last ? 1.0f : 0.0f)
+                << x << (reversed ? " reversed" : "");
         EXPECT_EQ(rig.total(), last - first + 1);
     }
 }
@@ -603,7 +634,9 @@ TEST(TrivialReject, WhollyLeftOfTheViewportIsOutsideNotClipped) {
     EXPECT_EQ(rig.total(), 0);
     // Each of the other three sides.
     for (const glm::vec2 s : {glm::vec2(1, 0), glm::vec2(0, 1), glm::vec2(0, -1)}) {
-        auto at = [&](float along, float across) { return glm::vec4(s.x * along + s.y * across, s.y * along + s.x * across, 0.5f, 1); };
+        auto at = [&](float along, float across) {
+            return glm::vec4(s.x * along + s.y * across, s.y * along + s.x * across, 0.5f, 1);
+        };
         rig.draw({at(1.5f, 0), at(2, 1), at(1.1f, -1)});
         EXPECT_EQ(rig.stats().primitivesOutside, 1u) << s.x << ", " << s.y;
     }
@@ -615,27 +648,32 @@ TEST(TrivialReject, WhollyLeftOfTheViewportIsOutsideNotClipped) {
 TEST(NonFinite, BadVertexDropsOnlyItsTriangle) {
     // Left, middle and right triangles; the middle one gets a NaN or an infinity somewhere.
     const int W = 64, H = 64;
-    const glm::vec4 left[3] = {screenClip(2, 2, 0.5, W, H), screenClip(20, 2, 0.5, W, H), screenClip(2, 60, 0.5, W, H)};
-    const glm::vec4 mid[3] = {screenClip(24, 2, 0.5, W, H), screenClip(40, 2, 0.5, W, H), screenClip(32, 60, 0.5, W, H)};
-    const glm::vec4 right[3] = {screenClip(44, 2, 0.5, W, H), screenClip(62, 2, 0.5, W, H), screenClip(62, 60, 0.5, W, H)};
+    const glm::vec4 left[3] = {screenClip(2, 2, 0.5, W, H), screenClip(20, 2, 0.5, W, H),
+                               screenClip(2, 60, 0.5, W, H)};
+    const glm::vec4 mid[3] = {screenClip(24, 2, 0.5, W, H), screenClip(40, 2, 0.5, W, H),
+                              screenClip(32, 60, 0.5, W, H)};
+    const glm::vec4 right[3] = {screenClip(44, 2, 0.5, W, H), screenClip(62, 2, 0.5, W, H),
+                                screenClip(62, 60, 0.5, W, H)};
     struct Bad {
         int vertex, component;
         float value;
     };
-    for (const Bad b : {Bad{1, 0, kNaN}, Bad{0, 3, kNaN}, Bad{2, 1, kInf}, Bad{1, 2, -kInf}, Bad{0, 3, kInf}}) {
+    for (const Bad b :
+         {Bad{1, 0, kNaN}, Bad{0, 3, kNaN}, Bad{2, 1, kInf}, Bad{1, 2, -kInf}, Bad{0, 3, kInf}}) {
         std::vector<glm::vec4> clip(left, left + 3);
         clip.insert(clip.end(), mid, mid + 3);
         clip.insert(clip.end(), right, right + 3);
         clip[3 + b.vertex][b.component] = b.value;
         Rig rig(W, H);
         ASSERT_NO_THROW(rig.draw(clip));
-        const std::string what = "vertex " + std::to_string(b.vertex) + " component " + std::to_string(b.component) +
-                                 " = " + std::to_string(b.value);
+        const std::string what = "vertex " + std::to_string(b.vertex) + " component " +
+                                 std::to_string(b.component) + " = " + std::to_string(b.value);
         EXPECT_EQ(rig.stats().cInvocations, 3u) << what;
         EXPECT_EQ(rig.stats().primitivesNonFinite, 1u) << what;
         EXPECT_EQ(rig.stats().cPrimitives, 2u) << what;
         for (int y = 0; y < H; ++y)
-            for (int x = 21; x < 44; ++x) ASSERT_EQ(rig.count(x, y), 0.0f) << what << " at " << x << ", " << y;
+            for (int x = 21; x < 44; ++x)
+                ASSERT_EQ(rig.count(x, y), 0.0f) << what << " at " << x << ", " << y;
         EXPECT_EQ(rig.count(3, 3), 1.0f) << what;
         EXPECT_EQ(rig.count(60, 4), 1.0f) << what;
         // Each side triangle: 18×58 half-rectangle.

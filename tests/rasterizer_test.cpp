@@ -87,8 +87,8 @@ struct Screen {
 
 // The clip-space position (w = 1) that lands on screen position p under viewport v.
 glm::vec4 toClip(const Screen& p, const Viewport& v, float z = 0.5f) {
-    return {float(2.0 * (p.x - v.topLeftX) / v.width - 1.0), float(1.0 - 2.0 * (p.y - v.topLeftY) / v.height), z,
-            1.0f};
+    return {float(2.0 * (p.x - v.topLeftX) / v.width - 1.0), float(1.0 - 2.0 * (p.y - v.topLeftY) / v.height),
+            z, 1.0f};
 }
 
 // Screen position in 1/256 pixel, from the float clip position actually fed to the pipeline, by
@@ -103,9 +103,13 @@ Fixed toFixed(const glm::vec4& clip, const Viewport& v) {
 }
 
 // Centre of pixel (i, j) in 1/256 pixel.
-int64_t centre(int64_t i) { return i * 256 + 128; }
+int64_t centre(int64_t i) {
+    return i * 256 + 128;
+}
 
-int sign(int64_t a) { return (a > 0) - (a < 0); }
+int sign(int64_t a) {
+    return (a > 0) - (a < 0);
+}
 
 // The brute-force reference: is the centre (cx, cy) (1/256 pixel) inside the triangle, by the
 // D3D11 top-left rule taken from its definition.
@@ -117,8 +121,8 @@ bool referenceCovers(const Fixed (&v)[3], int64_t cx, int64_t cy) {
         const Fixed& b = v[(k + 1) % 3];
         const Fixed& c = v[(k + 2) % 3];
         const int64_t dx = b.x - a.x, dy = b.y - a.y;
-        const int64_t e = dx * (cy - a.y) - dy * (cx - a.x);       // side of the centre
-        const int64_t ec = dx * (c.y - a.y) - dy * (c.x - a.x);    // side of the third vertex (interior)
+        const int64_t e = dx * (cy - a.y) - dy * (cx - a.x);     // side of the centre
+        const int64_t ec = dx * (c.y - a.y) - dy * (c.x - a.x);  // side of the third vertex (interior)
         if (e != 0) {
             if (sign(e) != sign(ec)) return false;
             continue;
@@ -143,16 +147,18 @@ struct PixelBox {
 PixelBox viewportPixels(const Viewport& v, uint32_t width, uint32_t height) {
     PixelBox b{int(width), int(height), -1, -1};
     for (int i = 0; i < int(width); ++i)
-        if (i + 0.5 >= v.topLeftX && i + 0.5 < double(v.topLeftX) + v.width) b.x0 = std::min(b.x0, i), b.x1 = std::max(b.x1, i);
+        if (i + 0.5 >= v.topLeftX && i + 0.5 < double(v.topLeftX) + v.width)
+            b.x0 = std::min(b.x0, i), b.x1 = std::max(b.x1, i);
     for (int j = 0; j < int(height); ++j)
-        if (j + 0.5 >= v.topLeftY && j + 0.5 < double(v.topLeftY) + v.height) b.y0 = std::min(b.y0, j), b.y1 = std::max(b.y1, j);
+        if (j + 0.5 >= v.topLeftY && j + 0.5 < double(v.topLeftY) + v.height)
+            b.y0 = std::min(b.y0, j), b.y1 = std::max(b.y1, j);
     return b;
 }
 
 // ---- A context with one float target and a vertex buffer of clip positions ------------------------
 
 class Rig {
-public:
+  public:
     Rig(uint32_t width, uint32_t height, ContextOptions options = {.threads = 2})
         : ctx_(options), layout_(kPositionLayout), color_(width, height, Format::R32G32B32A32_FLOAT) {
         ctx_.setInputLayout(&layout_);
@@ -198,7 +204,7 @@ public:
     }
     const PipelineStatistics& stats() const { return ctx_.drawStatistics(); }
 
-private:
+  private:
     Context ctx_;
     InputLayout layout_;
     RenderTarget color_;
@@ -213,8 +219,8 @@ std::string describe(const glm::vec4 (&clip)[3], const Fixed (&f)[3], const View
     for (int k = 0; k < 3; ++k) {
         char hex[128];
         std::snprintf(hex, sizeof hex, "clip (%a, %a, %a, 1)", clip[k].x, clip[k].y, clip[k].z);
-        os << "  v" << k << " screen (" << f[k].x / 256.0 << ", " << f[k].y / 256.0 << ") = 16.8 (" << f[k].x << ", "
-           << f[k].y << ")  " << hex << "\n";
+        os << "  v" << k << " screen (" << f[k].x / 256.0 << ", " << f[k].y / 256.0 << ") = 16.8 (" << f[k].x
+           << ", " << f[k].y << ")  " << hex << "\n";
     }
     return os.str();
 }
@@ -232,18 +238,26 @@ struct TriangleMaker {
     Screen anywhere(double margin) { return {uni(-margin, w + margin), uni(-margin, h + margin)}; }
     Screen onCentre() { return {uniInt(-2, int(w) + 2) + 0.5, uniInt(-2, int(h) + 2) + 0.5}; }
     Screen onCorner() { return {double(uniInt(-2, int(w) + 2)), double(uniInt(-2, int(h) + 2))}; }
-    Screen onSubpixel() { return {uniInt(-512, int(w) * 256 + 512) / 256.0, uniInt(-512, int(h) * 256 + 512) / 256.0}; }
+    Screen onSubpixel() {
+        return {uniInt(-512, int(w) * 256 + 512) / 256.0, uniInt(-512, int(h) * 256 + 512) / 256.0};
+    }
     // Exactly half-way between two 16.8 positions: the snap must round half to even.
     Screen onHalfSubpixel() {
-        return {(uniInt(-512, int(w) * 256 + 512) + 0.5) / 256.0, (uniInt(-512, int(h) * 256 + 512) + 0.5) / 256.0};
+        return {(uniInt(-512, int(w) * 256 + 512) + 0.5) / 256.0,
+                (uniInt(-512, int(h) * 256 + 512) + 0.5) / 256.0};
     }
     Screen mixed() {
         switch (uniInt(0, 4)) {
-            case 0: return onCentre();
-            case 1: return onCorner();
-            case 2: return onSubpixel();
-            case 3: return onHalfSubpixel();
-            default: return anywhere(4);
+            case 0:
+                return onCentre();
+            case 1:
+                return onCorner();
+            case 2:
+                return onSubpixel();
+            case 3:
+                return onHalfSubpixel();
+            default:
+                return anywhere(4);
         }
     }
 
@@ -357,7 +371,8 @@ TEST(TriangleCoverage, RandomTrianglesMatchBruteForce) {
             for (int x = box.x0; x <= box.x1; ++x)
                 for (int k = 0; k < 3; ++k) {
                     const Fixed &a = f[k], &b = f[(k + 1) % 3];
-                    if ((b.x - a.x) * (centre(y) - a.y) == (b.y - a.y) * (centre(x) - a.x) && rig.count(x, y) != 0)
+                    if ((b.x - a.x) * (centre(y) - a.y) == (b.y - a.y) * (centre(x) - a.x) &&
+                        rig.count(x, y) != 0)
                         ++tie_pixels;
                 }
         if (mismatches) {
@@ -367,7 +382,8 @@ TEST(TriangleCoverage, RandomTrianglesMatchBruteForce) {
                           << ") expected " << (first_expected ? "covered" : "empty") << "\n"
                           << describe(clip, f, v);
         }
-        EXPECT_EQ(rig.stats().psInvocations, uint64_t(expected_count)) << "triangle " << n << "\n" << describe(clip, f, v);
+        EXPECT_EQ(rig.stats().psInvocations, uint64_t(expected_count)) << "triangle " << n << "\n"
+                                                                       << describe(clip, f, v);
         covered_triangles += expected_count > 0;
         covered_pixels += uint64_t(expected_count);
     }
@@ -407,17 +423,23 @@ int expectExactlyOnce(const Rig& rig, const std::vector<Fixed>& poly, const std:
             const float c = rig.count(x, y);
             once += c == 1.0f;
             const Where w = classify(poly, centre(x), centre(y));
-            const bool ok = w == Where::Inside ? c == 1.0f : w == Where::Outside ? c == 0.0f : (c == 0.0f || c == 1.0f);
+            const bool ok = w == Where::Inside    ? c == 1.0f
+                            : w == Where::Outside ? c == 0.0f
+                                                  : (c == 0.0f || c == 1.0f);
             if (!ok && bad++ < 5)
-                ADD_FAILURE() << what << ": pixel (" << x << ", " << y << ") counted " << c << " times, centre "
-                              << (w == Where::Inside ? "inside" : w == Where::Outside ? "outside" : "on the boundary");
+                ADD_FAILURE() << what << ": pixel (" << x << ", " << y << ") counted " << c
+                              << " times, centre "
+                              << (w == Where::Inside    ? "inside"
+                                  : w == Where::Outside ? "outside"
+                                                        : "on the boundary");
         }
     }
     EXPECT_EQ(bad, 0) << what;
     return once;
 }
 
-void drawFan(Rig& rig, Screen centrePoint, const std::vector<Screen>& rim, std::mt19937& rng, const std::string& what) {
+void drawFan(Rig& rig, Screen centrePoint, const std::vector<Screen>& rim, std::mt19937& rng,
+             const std::string& what) {
     std::vector<Screen> tris;
     for (size_t k = 0; k < rim.size(); ++k) {
         Screen a = rim[k], b = rim[(k + 1) % rim.size()];
@@ -455,7 +477,8 @@ TEST(Watertight, FanOnPixelCentresAndCornersCoversEachPixelOnce) {
     std::vector<Screen> rim;
     for (int k = 0; k < 32; ++k) {
         const double a = 2 * std::numbers::pi * k / 32, r = k % 2 ? 30.0 : 21.0;
-        rim.push_back({std::round(2 * (c.x + r * std::cos(a))) / 2, std::round(2 * (c.y + r * std::sin(a))) / 2});
+        rim.push_back(
+            {std::round(2 * (c.x + r * std::cos(a))) / 2, std::round(2 * (c.y + r * std::sin(a))) / 2});
     }
     drawFan(rig, c, rim, rng, "lattice fan");
 }
@@ -470,7 +493,8 @@ void drawGrid(Rig& rig, const std::vector<std::vector<Screen>>& vtx, std::mt1993
     };
     for (size_t j = 0; j < rows; ++j)
         for (size_t i = 0; i < cols; ++i) {
-            const Screen &p00 = vtx[j][i], &p10 = vtx[j][i + 1], &p01 = vtx[j + 1][i], &p11 = vtx[j + 1][i + 1];
+            const Screen &p00 = vtx[j][i], &p10 = vtx[j][i + 1], &p01 = vtx[j + 1][i],
+                         &p11 = vtx[j + 1][i + 1];
             if (rng() & 1) {
                 add(p00, p10, p11), add(p00, p11, p01);
             } else {
@@ -524,9 +548,11 @@ TEST(Watertight, GridOnPixelCentresCoversHalfOpenRectangleOnce) {
     int bad = 0;
     for (int y = 0; y < int(rig.height()); ++y)
         for (int x = 0; x < int(rig.width()); ++x) {
-            const bool in = x + 0.5 >= x0 && x + 0.5 < x0 + kCols * cw && y + 0.5 >= y0 && y + 0.5 < y0 + kRows * ch;
+            const bool in =
+                x + 0.5 >= x0 && x + 0.5 < x0 + kCols * cw && y + 0.5 >= y0 && y + 0.5 < y0 + kRows * ch;
             if (rig.count(x, y) != (in ? 1.0f : 0.0f) && bad++ < 5)
-                ADD_FAILURE() << "pixel (" << x << ", " << y << ") counted " << rig.count(x, y) << ", expected " << in;
+                ADD_FAILURE() << "pixel (" << x << ", " << y << ") counted " << rig.count(x, y)
+                              << ", expected " << in;
         }
     EXPECT_EQ(bad, 0);
     EXPECT_EQ(rig.total(), kCols * int(cw) * kRows * int(ch));
@@ -541,7 +567,8 @@ TEST(Watertight, GridBeyondTheTargetCoversEveryPixelOnce) {
     std::vector<std::vector<Screen>> vtx(kRows + 1, std::vector<Screen>(kCols + 1));
     for (int j = 0; j <= kRows; ++j)
         for (int i = 0; i <= kCols; ++i)
-            vtx[j][i] = {-31.7 + (i + (i % kCols ? jitter(rng) : 0)) * 23.9, -27.3 + (j + (j % kRows ? jitter(rng) : 0)) * 21.3};
+            vtx[j][i] = {-31.7 + (i + (i % kCols ? jitter(rng) : 0)) * 23.9,
+                         -27.3 + (j + (j % kRows ? jitter(rng) : 0)) * 21.3};
     drawGrid(rig, vtx, rng);
     for (int y = 0; y < int(rig.height()); ++y)
         for (int x = 0; x < int(rig.width()); ++x) ASSERT_EQ(rig.count(x, y), 1.0f) << x << ", " << y;
@@ -567,32 +594,37 @@ void expectTriangle(Screen a, Screen b, Screen c, Expected expected, const std::
 TEST(TopLeftRule, TopEdgeOnCentresIsCoveredBottomEdgeIsNot) {
     // Top edge y = 3.5 through row 3's centres, left edge x = 2.5 through column 2's; the
     // hypotenuse x + y = 14 (a right edge) through centres (10.5, 3.5), (9.5, 4.5)...
-    expectTriangle({2.5, 3.5}, {10.5, 3.5}, {2.5, 11.5},
-                   [](int i, int j) { return i >= 2 && j >= 3 && i + j + 1 < 14; }, "top-left corner triangle");
+    expectTriangle(
+        {2.5, 3.5}, {10.5, 3.5}, {2.5, 11.5}, [](int i, int j) { return i >= 2 && j >= 3 && i + j + 1 < 14; },
+        "top-left corner triangle");
     // Bottom edge y = 11.5 through row 11's centres: not a top edge, row 11 is empty.
     // Hypotenuse x = y - 1 with the interior to its left (a right edge) through (2.5, 3.5)...
-    expectTriangle({2.5, 3.5}, {10.5, 11.5}, {2.5, 11.5},
-                   [](int i, int j) { return i >= 2 && j <= 10 && i + 0.5 < j + 0.5 - 1; }, "bottom edge triangle");
+    expectTriangle(
+        {2.5, 3.5}, {10.5, 11.5}, {2.5, 11.5},
+        [](int i, int j) { return i >= 2 && j <= 10 && i + 0.5 < j + 0.5 - 1; }, "bottom edge triangle");
     {
         Rig rig(16, 16);
         rig.drawScreen({{2.5, 3.5}, {10.5, 3.5}, {2.5, 11.5}}, Topology::TriangleList);
-        for (int i = 0; i < 16; ++i) EXPECT_EQ(rig.count(i, 3), i >= 2 && i <= 9 ? 1.0f : 0.0f) << "row 3, x " << i;
+        for (int i = 0; i < 16; ++i)
+            EXPECT_EQ(rig.count(i, 3), i >= 2 && i <= 9 ? 1.0f : 0.0f) << "row 3, x " << i;
     }
 }
 
 TEST(TopLeftRule, LeftEdgeOnCentresIsCoveredRightEdgeIsNot) {
     // Right vertical edge x = 13.5 through column 13's centres: column 13 stays empty.
     // Top edge y = 3.5 covered; the hypotenuse x + y = 17 (a left edge) covered.
-    expectTriangle({5.5, 3.5}, {13.5, 3.5}, {13.5, 11.5},
-                   [](int i, int j) { return i <= 12 && j >= 3 && (i + 0.5) >= (j + 0.5) + 2; }, "right edge triangle");
+    expectTriangle(
+        {5.5, 3.5}, {13.5, 3.5}, {13.5, 11.5},
+        [](int i, int j) { return i <= 12 && j >= 3 && (i + 0.5) >= (j + 0.5) + 2; }, "right edge triangle");
     // A tall thin triangle: left edge x = 4.5 (column 4 covered), top edge y = 2.5 (row 2
     // covered), hypotenuse 5(x - 4.5) + (y - 2.5) = 10 a right edge through (6.5, 2.5), (5.5, 7.5).
-    expectTriangle({4.5, 2.5}, {6.5, 2.5}, {4.5, 12.5},
-                   [](int i, int j) {
-                       const double x = i + 0.5, y = j + 0.5;
-                       return x >= 4.5 && y >= 2.5 && 5 * (x - 4.5) + (y - 2.5) < 10;  // hypotenuse: a right edge
-                   },
-                   "thin triangle");
+    expectTriangle(
+        {4.5, 2.5}, {6.5, 2.5}, {4.5, 12.5},
+        [](int i, int j) {
+            const double x = i + 0.5, y = j + 0.5;
+            return x >= 4.5 && y >= 2.5 && 5 * (x - 4.5) + (y - 2.5) < 10;  // hypotenuse: a right edge
+        },
+        "thin triangle");
     {
         Rig rig(16, 16);
         rig.drawScreen({{13.5, 3.5}, {13.5, 11.5}, {5.5, 3.5}}, Topology::TriangleList);
@@ -605,8 +637,18 @@ TEST(TopLeftRule, SharedVertexOnACentreIsCoveredOnce) {
     // Four triangles around (8.5, 8.5), a pixel centre: exactly one takes it.
     Rig rig(16, 16);
     const Screen c{8.5, 8.5};
-    rig.drawScreen({c, {2.5, 2.5}, {14.5, 2.5}, c, {14.5, 2.5}, {14.5, 14.5}, c, {14.5, 14.5}, {2.5, 14.5}, c,
-                    {2.5, 14.5}, {2.5, 2.5}},
+    rig.drawScreen({c,
+                    {2.5, 2.5},
+                    {14.5, 2.5},
+                    c,
+                    {14.5, 2.5},
+                    {14.5, 14.5},
+                    c,
+                    {14.5, 14.5},
+                    {2.5, 14.5},
+                    c,
+                    {2.5, 14.5},
+                    {2.5, 2.5}},
                    Topology::TriangleList);
     for (int j = 0; j < 16; ++j)
         for (int i = 0; i < 16; ++i) {
@@ -634,8 +676,9 @@ TEST(Culling, CullModeAgainstWindingAndFrontCounterClockwise) {
                 const bool front = frontCcw ? !clockwise : clockwise;
                 const bool drawn = cull == CullMode::None || (cull == CullMode::Back && front) ||
                                    (cull == CullMode::Front && !front);
-                const std::string what = std::string(clockwise ? "cw" : "ccw") + " frontCCW=" +
-                                         (frontCcw ? "1" : "0") + " cull=" + std::string(name(cull));
+                const std::string what = std::string(clockwise ? "cw" : "ccw") +
+                                         " frontCCW=" + (frontCcw ? "1" : "0") +
+                                         " cull=" + std::string(name(cull));
                 EXPECT_EQ(rig.stats().primitivesCulled, drawn ? 0u : 1u) << what;
                 // Centres (i + .5, j + .5) with i, j >= 2 and i + j < 13 (the hypotenuse x + y = 14
                 // is a right edge): 45.
@@ -652,15 +695,15 @@ TEST(Points, CoverThePixelWhoseCentreIsInHalfOpenSquare) {
         int px, py;
     };
     const Case cases[] = {
-        {3.5, 4.5, 3, 4},                  // on a centre
-        {3.0, 4.0, 2, 3},                  // on a corner: [2.5, 3.5) holds centre 2.5
-        {3.25, 4.75, 3, 4},                // fractional
-        {3.75, 4.25, 3, 4},                //
-        {3.0 + 1 / 256.0, 4.0, 3, 3},      // one subpixel past the corner
-        {3.0 + 1 / 1024.0, 5.0, 2, 4},     // snaps back onto the corner
-        {0.0, 0.0, -1, -1},                // off the target: nothing
-        {15.99, 15.99, 15, 15},            // last pixel
-        {16.0, 8.5, 15, 8},                // right edge of the target: centre 15.5 in [15.5, 16.5)
+        {3.5, 4.5, 3, 4},               // on a centre
+        {3.0, 4.0, 2, 3},               // on a corner: [2.5, 3.5) holds centre 2.5
+        {3.25, 4.75, 3, 4},             // fractional
+        {3.75, 4.25, 3, 4},             //
+        {3.0 + 1 / 256.0, 4.0, 3, 3},   // one subpixel past the corner
+        {3.0 + 1 / 1024.0, 5.0, 2, 4},  // snaps back onto the corner
+        {0.0, 0.0, -1, -1},             // off the target: nothing
+        {15.99, 15.99, 15, 15},         // last pixel
+        {16.0, 8.5, 15, 8},             // right edge of the target: centre 15.5 in [15.5, 16.5)
     };
     for (const Case& c : cases) {
         Rig rig(16, 16);
@@ -677,8 +720,8 @@ TEST(Points, CoverThePixelWhoseCentreIsInHalfOpenSquare) {
     for (int a = 0; a < 4; ++a)
         for (int b = 0; b < 4; ++b) pts.push_back({6.0 + a * 0.25, 9.0 + b * 0.25});
     rig.drawScreen(pts, Topology::PointList);
-    EXPECT_EQ(rig.count(5, 8), 1.0f);   // x = 6.0, y = 9.0
-    EXPECT_EQ(rig.count(6, 8), 3.0f);   // x in (6, 7), y = 9.0
+    EXPECT_EQ(rig.count(5, 8), 1.0f);  // x = 6.0, y = 9.0
+    EXPECT_EQ(rig.count(6, 8), 3.0f);  // x in (6, 7), y = 9.0
     EXPECT_EQ(rig.count(5, 9), 3.0f);
     EXPECT_EQ(rig.count(6, 9), 9.0f);
     EXPECT_EQ(rig.total(), 16);
@@ -736,7 +779,8 @@ TEST(Lines, RandomLinesTakeTheNearestCentrePerMajorStep) {
     int drawn = 0;
     for (int n = 0; n < 300; ++n) {
         Screen a{ux(rng), uy(rng)}, b{ux(rng), uy(rng)};
-        if (n % 3 == 0) a = {std::round(a.x) + 0.5, std::round(a.y) + 0.5}, b = {std::round(b.x), std::round(b.y) + 0.5};
+        if (n % 3 == 0)
+            a = {std::round(a.x) + 0.5, std::round(a.y) + 0.5}, b = {std::round(b.x), std::round(b.y) + 0.5};
         const Fixed fa = toFixed(toClip(a, rig.viewport()), rig.viewport());
         const Fixed fb = toFixed(toClip(b, rig.viewport()), rig.viewport());
         if (fa.x == fb.x && fa.y == fb.y) continue;
@@ -746,7 +790,9 @@ TEST(Lines, RandomLinesTakeTheNearestCentrePerMajorStep) {
         const int64_t a0 = x_major ? fa.x : fa.y, a1 = x_major ? fb.x : fb.y;
         const int64_t b0 = x_major ? fa.y : fa.x, b1 = x_major ? fb.y : fb.x;
         const int majors = x_major ? W : H, minors = x_major ? H : W;
-        auto at = [&](int major, int minor) { return x_major ? rig.count(major, minor) : rig.count(minor, major); };
+        auto at = [&](int major, int minor) {
+            return x_major ? rig.count(major, minor) : rig.count(minor, major);
+        };
         int expected_total = 0;
         for (int i = 0; i < majors; ++i) {
             const int64_t c = centre(i);
@@ -838,7 +884,8 @@ std::vector<ColorIn> randomScene(uint32_t seed, int triangles, double width, dou
     for (int t = 0; t < triangles; ++t) {
         const double cx = -0.1 * width + 1.2 * width * u(rng), cy = -0.1 * height + 1.2 * height * u(rng);
         const float z = float(u(rng));
-        const glm::vec4 color(float(u(rng) * 0.1), float(u(rng) * 0.1), float(u(rng) * 0.1), float(0.2 + 0.6 * u(rng)));
+        const glm::vec4 color(float(u(rng) * 0.1), float(u(rng) * 0.1), float(u(rng) * 0.1),
+                              float(0.2 + 0.6 * u(rng)));
         for (int k = 0; k < 3; ++k) {
             const double x = cx + size * (u(rng) - 0.5), y = cy + size * (u(rng) - 0.5);
             const float w = float(0.5 + 1.5 * u(rng));
@@ -858,8 +905,8 @@ struct SceneImage {
     PipelineStatistics stats;
 };
 
-SceneImage renderScene(const std::vector<ColorIn>& scene, ContextOptions options, Format format, const BlendState& blend,
-                       uint32_t width, uint32_t height) {
+SceneImage renderScene(const std::vector<ColorIn>& scene, ContextOptions options, Format format,
+                       const BlendState& blend, uint32_t width, uint32_t height) {
     SceneImage img{RenderTarget(width, height, format), DepthTarget(width, height), {}};
     img.color.clear(glm::vec4(0.0f));
     img.depth.clear(1.0f);
@@ -893,11 +940,12 @@ TEST(Determinism, SameImageForAnyThreadCount) {
     // into a different number of chunks for each thread count.
     for (const Scene& s : {Scene{2000, 60.0}, Scene{20000, 12.0}}) {
         const auto scene = randomScene(42, s.triangles, 200, 150, s.size);
-        const SceneImage one = renderScene(scene, {.threads = 1}, Format::R32G32B32A32_FLOAT, countingBlend(), 200, 150);
+        const SceneImage one =
+            renderScene(scene, {.threads = 1}, Format::R32G32B32A32_FLOAT, countingBlend(), 200, 150);
         EXPECT_GT(one.stats.psInvocations, 20000u);
         for (unsigned threads : {2u, 8u}) {
-            const SceneImage many =
-                renderScene(scene, {.threads = threads}, Format::R32G32B32A32_FLOAT, countingBlend(), 200, 150);
+            const SceneImage many = renderScene(scene, {.threads = threads}, Format::R32G32B32A32_FLOAT,
+                                                countingBlend(), 200, 150);
             EXPECT_TRUE(many.color == one.color) << s.triangles << " triangles, " << threads << " threads";
             EXPECT_TRUE(many.depth == one.depth) << s.triangles << " triangles, " << threads << " threads";
             EXPECT_EQ(many.stats.psInvocations, one.stats.psInvocations) << threads << " threads";
@@ -910,18 +958,21 @@ TEST(Determinism, SameImageForAnyThreadCount) {
 TEST(ReferencePipeline, SameCoverageAndColoursWithin1Over255) {
     const auto scene = randomScene(99, 2000, 200, 150, 60.0);
     // Float target, One + One: alpha counts the fragments that passed the depth test.
-    const SceneImage fast = renderScene(scene, {.threads = 2}, Format::R32G32B32A32_FLOAT, countingBlend(), 200, 150);
-    const SceneImage ref =
-        renderScene(scene, {.threads = 2, .reference = true}, Format::R32G32B32A32_FLOAT, countingBlend(), 200, 150);
+    const SceneImage fast =
+        renderScene(scene, {.threads = 2}, Format::R32G32B32A32_FLOAT, countingBlend(), 200, 150);
+    const SceneImage ref = renderScene(scene, {.threads = 2, .reference = true}, Format::R32G32B32A32_FLOAT,
+                                       countingBlend(), 200, 150);
     int bad = 0, covered = 0;
     for (uint32_t y = 0; y < 150; ++y)
         for (uint32_t x = 0; x < 200; ++x) {
             const glm::vec4 f = fast.color.load(x, y), r = ref.color.load(x, y);
             covered += f.a > 0;
-            if (f.a != r.a && bad++ < 5) ADD_FAILURE() << "count at (" << x << ", " << y << "): " << f.a << " vs " << r.a;
+            if (f.a != r.a && bad++ < 5)
+                ADD_FAILURE() << "count at (" << x << ", " << y << "): " << f.a << " vs " << r.a;
             for (int c = 0; c < 3; ++c)
                 if (!(std::abs(f[c] - r[c]) <= 1.0f / 255) && bad++ < 5)
-                    ADD_FAILURE() << "channel " << c << " at (" << x << ", " << y << "): " << f[c] << " vs " << r[c];
+                    ADD_FAILURE() << "channel " << c << " at (" << x << ", " << y << "): " << f[c] << " vs "
+                                  << r[c];
             if (fast.depth.load(x, y) != ref.depth.load(x, y) && bad++ < 5)
                 ADD_FAILURE() << "depth at (" << x << ", " << y << "): " << fast.depth.load(x, y) << " vs "
                               << ref.depth.load(x, y);
@@ -932,17 +983,18 @@ TEST(ReferencePipeline, SameCoverageAndColoursWithin1Over255) {
     EXPECT_EQ(fast.stats.psInvocations, ref.stats.psInvocations - ref.stats.fragmentsLateDepthKilled);
 
     // RGBA8 with the lecture's additive blend: the fast RGBA8 blender against double.
-    const SceneImage fast8 = renderScene(scene, {.threads = 2}, Format::R8G8B8A8_UNORM, BlendState::additive(), 200, 150);
-    const SceneImage ref8 =
-        renderScene(scene, {.threads = 2, .reference = true}, Format::R8G8B8A8_UNORM, BlendState::additive(), 200, 150);
+    const SceneImage fast8 =
+        renderScene(scene, {.threads = 2}, Format::R8G8B8A8_UNORM, BlendState::additive(), 200, 150);
+    const SceneImage ref8 = renderScene(scene, {.threads = 2, .reference = true}, Format::R8G8B8A8_UNORM,
+                                        BlendState::additive(), 200, 150);
     int bad8 = 0;
     for (uint32_t y = 0; y < 150; ++y)
         for (uint32_t x = 0; x < 200; ++x) {
             const glm::vec4 f = fast8.color.load(x, y), r = ref8.color.load(x, y);
             for (int c = 0; c < 4; ++c)
                 if (!(std::abs(f[c] - r[c]) <= 1.0f / 255 + 1e-6f) && bad8++ < 5)
-                    ADD_FAILURE() << "RGBA8 channel " << c << " at (" << x << ", " << y << "): " << f[c] * 255 << " vs "
-                                  << r[c] * 255;
+                    ADD_FAILURE() << "RGBA8 channel " << c << " at (" << x << ", " << y << "): " << f[c] * 255
+                                  << " vs " << r[c] * 255;
         }
     EXPECT_EQ(bad8, 0);
 }
