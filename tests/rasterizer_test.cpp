@@ -38,6 +38,26 @@ struct PsOne {
     glm::vec4 operator()(const ClipVertex&) const { return glm::vec4(1.0f); }
 };
 
+// The same, as a vertex template with an eight-wide pixel shader: with an RGBA8 target and the
+// replace or additive blend the pipeline shades these in 4×2 blocks (rasterizeTriangleBlocks).
+// Each fragment adds 1/255, one UNORM step, so the red byte counts fragments.
+template <class T>
+struct BlockVertex {
+    glm::vec<4, T> position;
+};
+struct VsBlock {
+    BlockVertex<float> operator()(const ClipIn& in) const { return {in.position}; }
+};
+struct PsBlockCount {
+    using Input = BlockVertex<float>;
+    glm::vec4 operator()(const Input&) const { return glm::vec4(glm::vec3(1.0f / 255), 1.0f); }
+    glm::vec<4, Float8> operator()(const Wide<Input>&) const {
+        return {Float8(1.0f / 255), Float8(1.0f / 255), Float8(1.0f / 255), Float8(1.0f)};
+    }
+};
+static_assert(WidePixelShader<PsBlockCount>);
+static_assert(!WidePixelShader<PsOne>);
+
 struct ColorIn {
     glm::vec4 position;
     glm::vec4 color;
@@ -157,15 +177,26 @@ PixelBox viewportPixels(const Viewport& v, uint32_t width, uint32_t height) {
 
 // ---- A context with one float target and a vertex buffer of clip positions ------------------------
 
+// How triangles reach the pixel shader: 2×2 quads (scalar shader, float target, generic blend)
+// or 4×2 blocks (eight-wide shader, RGBA8 target, the fast additive blend).
+enum class Path { Quads, Blocks };
+const char* pathName(Path p) {
+    return p == Path::Quads ? "quads" : "blocks";
+}
+constexpr Path kPaths[] = {Path::Quads, Path::Blocks};
+
 class Rig {
   public:
-    Rig(uint32_t width, uint32_t height, ContextOptions options = {.threads = 2})
-        : ctx_(options), layout_(kPositionLayout), color_(width, height, Format::R32G32B32A32_FLOAT) {
+    Rig(uint32_t width, uint32_t height, Path path = Path::Quads, ContextOptions options = {.threads = 2})
+        : path_(path),
+          ctx_(options),
+          layout_(kPositionLayout),
+          color_(width, height, path == Path::Quads ? Format::R32G32B32A32_FLOAT : Format::R8G8B8A8_UNORM) {
         ctx_.setInputLayout(&layout_);
         ctx_.setRenderTargets(&color_, nullptr);
         setViewport({0, 0, float(width), float(height), 0, 1});
         ctx_.setRasterizerState(noCull());
-        ctx_.setBlendState(countingBlend());
+        ctx_.setBlendState(path == Path::Quads ? countingBlend() : BlendState::additive());
         color_.clear(glm::vec4(0.0f));
         const glm::vec4 dummy[1] = {};
         vb_ = VertexBuffer::create(std::span<const glm::vec4>(dummy));
@@ -184,7 +215,10 @@ class Rig {
     void drawClip(std::span<const glm::vec4> clip, Topology topology) {
         vb_.update(clip);
         ctx_.setPrimitiveTopology(topology);
-        ctx_.draw(VsPass{}, PsOne{}, uint32_t(clip.size()));
+        if (path_ == Path::Quads)
+            ctx_.draw(VsPass{}, PsOne{}, uint32_t(clip.size()));
+        else
+            ctx_.draw(VsBlock{}, PsBlockCount{}, uint32_t(clip.size()));
     }
     void drawScreen(const std::vector<Screen>& points, Topology topology, float z = 0.5f) {
         std::vector<glm::vec4> clip;
@@ -193,7 +227,10 @@ class Rig {
     }
 
     // The red channel: fragments counted at the pixel.
-    float count(int x, int y) const { return color_.rgba32f()[4 * (size_t(y) * color_.width() + size_t(x))]; }
+    float count(int x, int y) const {
+        const size_t i = 4 * (size_t(y) * color_.width() + size_t(x));
+        return path_ == Path::Quads ? color_.rgba32f()[i] : float(color_.rgba8()[i]);
+    }
     uint32_t width() const { return color_.width(); }
     uint32_t height() const { return color_.height(); }
     int total() const {
@@ -205,6 +242,7 @@ class Rig {
     const PipelineStatistics& stats() const { return ctx_.drawStatistics(); }
 
   private:
+    Path path_;
     Context ctx_;
     InputLayout layout_;
     RenderTarget color_;
@@ -312,7 +350,7 @@ struct TriangleMaker {
     }
 };
 
-TEST(TriangleCoverage, RandomTrianglesMatchBruteForce) {
+void expectCoverageMatchesBruteForce(Path path, uint32_t seed) {
     constexpr int kTriangles = 12000;
     struct Config {
         uint32_t width, height;
@@ -326,13 +364,13 @@ TEST(TriangleCoverage, RandomTrianglesMatchBruteForce) {
     std::vector<std::unique_ptr<Rig>> rigs;
     std::vector<PixelBox> boxes;
     for (const Config& c : configs) {
-        rigs.push_back(std::make_unique<Rig>(c.width, c.height));
+        rigs.push_back(std::make_unique<Rig>(c.width, c.height, path));
         rigs.back()->setViewport(c.viewport);
         rigs.back()->ctx().setBlendState(BlendState::opaque());
         boxes.push_back(viewportPixels(c.viewport, c.width, c.height));
     }
 
-    std::mt19937 seeds(20240611);
+    std::mt19937 seeds(seed);
     int failures = 0, covered_triangles = 0, tie_pixels = 0;
     uint64_t covered_pixels = 0;
     for (int n = 0; n < kTriangles && failures < 5; ++n) {
@@ -377,7 +415,7 @@ TEST(TriangleCoverage, RandomTrianglesMatchBruteForce) {
                 }
         if (mismatches) {
             ++failures;
-            ADD_FAILURE() << "triangle " << n << " (kind " << n % 10 << "): " << mismatches
+            ADD_FAILURE() << pathName(path) << " triangle " << n << " (kind " << n % 10 << "): " << mismatches
                           << " pixels differ from the reference; first at (" << first_x << ", " << first_y
                           << ") expected " << (first_expected ? "covered" : "empty") << "\n"
                           << describe(clip, f, v);
@@ -391,6 +429,14 @@ TEST(TriangleCoverage, RandomTrianglesMatchBruteForce) {
     EXPECT_GT(covered_triangles, kTriangles / 2);
     EXPECT_GT(covered_pixels, 1000000u);
     EXPECT_GT(tie_pixels, 1000);
+}
+
+TEST(TriangleCoverage, RandomTrianglesMatchBruteForce) {
+    expectCoverageMatchesBruteForce(Path::Quads, 20240611);
+}
+
+TEST(TriangleCoverage, RandomTrianglesMatchBruteForceEightWide) {
+    expectCoverageMatchesBruteForce(Path::Blocks, 20240612);
 }
 
 // ---- 2. Watertight fans and grids -----------------------------------------------------------------
@@ -457,30 +503,36 @@ void drawFan(Rig& rig, Screen centrePoint, const std::vector<Screen>& rim, std::
 }
 
 TEST(Watertight, FanAroundInteriorPointCoversEachPixelOnce) {
-    Rig rig(96, 80);
-    std::mt19937 rng(7);
-    std::uniform_real_distribution<double> jitter(-0.3, 0.3), radius(12.0, 34.0);
-    const Screen c{47.3719, 39.6087};
-    std::vector<Screen> rim;
-    for (int k = 0; k < 32; ++k) {
-        const double a = 2 * std::numbers::pi * (k + jitter(rng)) / 32, r = radius(rng);
-        rim.push_back({c.x + r * std::cos(a), c.y + r * std::sin(a)});
+    for (const Path path : kPaths) {
+        SCOPED_TRACE(pathName(path));
+        Rig rig(96, 80, path);
+        std::mt19937 rng(7);
+        std::uniform_real_distribution<double> jitter(-0.3, 0.3), radius(12.0, 34.0);
+        const Screen c{47.3719, 39.6087};
+        std::vector<Screen> rim;
+        for (int k = 0; k < 32; ++k) {
+            const double a = 2 * std::numbers::pi * (k + jitter(rng)) / 32, r = radius(rng);
+            rim.push_back({c.x + r * std::cos(a), c.y + r * std::sin(a)});
+        }
+        drawFan(rig, c, rim, rng, "awkward fan");
     }
-    drawFan(rig, c, rim, rng, "awkward fan");
 }
 
 TEST(Watertight, FanOnPixelCentresAndCornersCoversEachPixelOnce) {
-    // Centre on a pixel centre, rim on the half-pixel lattice: spokes through many centres.
-    Rig rig(96, 80);
-    std::mt19937 rng(11);
-    const Screen c{48.5, 40.5};
-    std::vector<Screen> rim;
-    for (int k = 0; k < 32; ++k) {
-        const double a = 2 * std::numbers::pi * k / 32, r = k % 2 ? 30.0 : 21.0;
-        rim.push_back(
-            {std::round(2 * (c.x + r * std::cos(a))) / 2, std::round(2 * (c.y + r * std::sin(a))) / 2});
+    for (const Path path : kPaths) {
+        SCOPED_TRACE(pathName(path));
+        // Centre on a pixel centre, rim on the half-pixel lattice: spokes through many centres.
+        Rig rig(96, 80, path);
+        std::mt19937 rng(11);
+        const Screen c{48.5, 40.5};
+        std::vector<Screen> rim;
+        for (int k = 0; k < 32; ++k) {
+            const double a = 2 * std::numbers::pi * k / 32, r = k % 2 ? 30.0 : 21.0;
+            rim.push_back(
+                {std::round(2 * (c.x + r * std::cos(a))) / 2, std::round(2 * (c.y + r * std::sin(a))) / 2});
+        }
+        drawFan(rig, c, rim, rng, "lattice fan");
     }
-    drawFan(rig, c, rim, rng, "lattice fan");
 }
 
 // An (n+1)×(m+1) lattice of vertices split into 2·n·m triangles, random diagonals and windings.
@@ -518,60 +570,69 @@ std::vector<Fixed> gridOutline(const Rig& rig, const std::vector<std::vector<Scr
 }
 
 TEST(Watertight, JitteredGridCoversEachPixelOnce) {
-    Rig rig(160, 136);  // several tiles
-    std::mt19937 rng(3);
-    constexpr int kCols = 19, kRows = 17;
-    const double cw = 7.31, ch = 6.77;
-    std::uniform_real_distribution<double> jitter(-0.2, 0.2);
-    std::vector<std::vector<Screen>> vtx(kRows + 1, std::vector<Screen>(kCols + 1));
-    for (int j = 0; j <= kRows; ++j)
-        for (int i = 0; i <= kCols; ++i)
-            vtx[j][i] = {5.137 + (i + jitter(rng)) * cw, 3.911 + (j + jitter(rng)) * ch};
-    drawGrid(rig, vtx, rng);
-    EXPECT_EQ(rig.stats().cPrimitives, 2u * kCols * kRows);
-    const int once = expectExactlyOnce(rig, gridOutline(rig, vtx), "jittered grid");
-    EXPECT_GT(once, 15000);
+    for (const Path path : kPaths) {
+        SCOPED_TRACE(pathName(path));
+        Rig rig(160, 136, path);  // several tiles
+        std::mt19937 rng(3);
+        constexpr int kCols = 19, kRows = 17;
+        const double cw = 7.31, ch = 6.77;
+        std::uniform_real_distribution<double> jitter(-0.2, 0.2);
+        std::vector<std::vector<Screen>> vtx(kRows + 1, std::vector<Screen>(kCols + 1));
+        for (int j = 0; j <= kRows; ++j)
+            for (int i = 0; i <= kCols; ++i)
+                vtx[j][i] = {5.137 + (i + jitter(rng)) * cw, 3.911 + (j + jitter(rng)) * ch};
+        drawGrid(rig, vtx, rng);
+        EXPECT_EQ(rig.stats().cPrimitives, 2u * kCols * kRows);
+        const int once = expectExactlyOnce(rig, gridOutline(rig, vtx), "jittered grid");
+        EXPECT_GT(once, 15000);
+    }
 }
 
 TEST(Watertight, GridOnPixelCentresCoversHalfOpenRectangleOnce) {
-    // Shared vertices exactly on pixel centres: every internal edge and the outline pass through
-    // rows and columns of centres. The top-left rule gives the half-open rectangle
-    // [x0, x1) × [y0, y1) of centres, each once.
-    Rig rig(160, 136);
-    std::mt19937 rng(5);
-    constexpr int kCols = 12, kRows = 10;
-    const double x0 = 6.5, y0 = 9.5, cw = 11, ch = 12;
-    std::vector<std::vector<Screen>> vtx(kRows + 1, std::vector<Screen>(kCols + 1));
-    for (int j = 0; j <= kRows; ++j)
-        for (int i = 0; i <= kCols; ++i) vtx[j][i] = {x0 + i * cw, y0 + j * ch};
-    drawGrid(rig, vtx, rng);
-    int bad = 0;
-    for (int y = 0; y < int(rig.height()); ++y)
-        for (int x = 0; x < int(rig.width()); ++x) {
-            const bool in =
-                x + 0.5 >= x0 && x + 0.5 < x0 + kCols * cw && y + 0.5 >= y0 && y + 0.5 < y0 + kRows * ch;
-            if (rig.count(x, y) != (in ? 1.0f : 0.0f) && bad++ < 5)
-                ADD_FAILURE() << "pixel (" << x << ", " << y << ") counted " << rig.count(x, y)
-                              << ", expected " << in;
-        }
-    EXPECT_EQ(bad, 0);
-    EXPECT_EQ(rig.total(), kCols * int(cw) * kRows * int(ch));
+    for (const Path path : kPaths) {
+        SCOPED_TRACE(pathName(path));
+        // Shared vertices exactly on pixel centres: every internal edge and the outline pass through
+        // rows and columns of centres. The top-left rule gives the half-open rectangle
+        // [x0, x1) × [y0, y1) of centres, each once.
+        Rig rig(160, 136, path);
+        std::mt19937 rng(5);
+        constexpr int kCols = 12, kRows = 10;
+        const double x0 = 6.5, y0 = 9.5, cw = 11, ch = 12;
+        std::vector<std::vector<Screen>> vtx(kRows + 1, std::vector<Screen>(kCols + 1));
+        for (int j = 0; j <= kRows; ++j)
+            for (int i = 0; i <= kCols; ++i) vtx[j][i] = {x0 + i * cw, y0 + j * ch};
+        drawGrid(rig, vtx, rng);
+        int bad = 0;
+        for (int y = 0; y < int(rig.height()); ++y)
+            for (int x = 0; x < int(rig.width()); ++x) {
+                const bool in =
+                    x + 0.5 >= x0 && x + 0.5 < x0 + kCols * cw && y + 0.5 >= y0 && y + 0.5 < y0 + kRows * ch;
+                if (rig.count(x, y) != (in ? 1.0f : 0.0f) && bad++ < 5)
+                    ADD_FAILURE() << "pixel (" << x << ", " << y << ") counted " << rig.count(x, y)
+                                  << ", expected " << in;
+            }
+        EXPECT_EQ(bad, 0);
+        EXPECT_EQ(rig.total(), kCols * int(cw) * kRows * int(ch));
+    }
 }
 
 TEST(Watertight, GridBeyondTheTargetCoversEveryPixelOnce) {
-    // A jittered grid reaching past all four sides of the target (and of several tiles).
-    Rig rig(150, 100);
-    std::mt19937 rng(9);
-    constexpr int kCols = 9, kRows = 7;
-    std::uniform_real_distribution<double> jitter(-0.2, 0.2);
-    std::vector<std::vector<Screen>> vtx(kRows + 1, std::vector<Screen>(kCols + 1));
-    for (int j = 0; j <= kRows; ++j)
-        for (int i = 0; i <= kCols; ++i)
-            vtx[j][i] = {-31.7 + (i + (i % kCols ? jitter(rng) : 0)) * 23.9,
-                         -27.3 + (j + (j % kRows ? jitter(rng) : 0)) * 21.3};
-    drawGrid(rig, vtx, rng);
-    for (int y = 0; y < int(rig.height()); ++y)
-        for (int x = 0; x < int(rig.width()); ++x) ASSERT_EQ(rig.count(x, y), 1.0f) << x << ", " << y;
+    for (const Path path : kPaths) {
+        SCOPED_TRACE(pathName(path));
+        // A jittered grid reaching past all four sides of the target (and of several tiles).
+        Rig rig(150, 100, path);
+        std::mt19937 rng(9);
+        constexpr int kCols = 9, kRows = 7;
+        std::uniform_real_distribution<double> jitter(-0.2, 0.2);
+        std::vector<std::vector<Screen>> vtx(kRows + 1, std::vector<Screen>(kCols + 1));
+        for (int j = 0; j <= kRows; ++j)
+            for (int i = 0; i <= kCols; ++i)
+                vtx[j][i] = {-31.7 + (i + (i % kCols ? jitter(rng) : 0)) * 23.9,
+                             -27.3 + (j + (j % kRows ? jitter(rng) : 0)) * 21.3};
+        drawGrid(rig, vtx, rng);
+        for (int y = 0; y < int(rig.height()); ++y)
+            for (int x = 0; x < int(rig.width()); ++x) ASSERT_EQ(rig.count(x, y), 1.0f) << x << ", " << y;
+    }
 }
 
 // ---- 3. The top-left rule by hand -----------------------------------------------------------------
@@ -580,14 +641,16 @@ TEST(Watertight, GridBeyondTheTargetCoversEveryPixelOnce) {
 // `expected(i, j)`.
 template <class Expected>
 void expectTriangle(Screen a, Screen b, Screen c, Expected expected, const std::string& what) {
-    for (int winding = 0; winding < 2; ++winding) {
-        Rig rig(16, 16);
-        if (winding) std::swap(b, c);
-        rig.drawScreen({a, b, c}, Topology::TriangleList);
-        for (int j = 0; j < 16; ++j)
-            for (int i = 0; i < 16; ++i)
-                EXPECT_EQ(rig.count(i, j), expected(i, j) ? 1.0f : 0.0f)
-                    << what << (winding ? " (reversed)" : "") << ": pixel (" << i << ", " << j << ")";
+    for (const Path path : kPaths) {
+        SCOPED_TRACE(pathName(path));
+        for (int winding = 0; winding < 2; ++winding) {
+            Rig rig(16, 16, path);
+            rig.drawScreen({a, winding ? c : b, winding ? b : c}, Topology::TriangleList);
+            for (int j = 0; j < 16; ++j)
+                for (int i = 0; i < 16; ++i)
+                    EXPECT_EQ(rig.count(i, j), expected(i, j) ? 1.0f : 0.0f)
+                        << what << (winding ? " (reversed)" : "") << ": pixel (" << i << ", " << j << ")";
+        }
     }
 }
 
@@ -634,57 +697,63 @@ TEST(TopLeftRule, LeftEdgeOnCentresIsCoveredRightEdgeIsNot) {
 }
 
 TEST(TopLeftRule, SharedVertexOnACentreIsCoveredOnce) {
-    // Four triangles around (8.5, 8.5), a pixel centre: exactly one takes it.
-    Rig rig(16, 16);
-    const Screen c{8.5, 8.5};
-    rig.drawScreen({c,
-                    {2.5, 2.5},
-                    {14.5, 2.5},
-                    c,
-                    {14.5, 2.5},
-                    {14.5, 14.5},
-                    c,
-                    {14.5, 14.5},
-                    {2.5, 14.5},
-                    c,
-                    {2.5, 14.5},
-                    {2.5, 2.5}},
-                   Topology::TriangleList);
-    for (int j = 0; j < 16; ++j)
-        for (int i = 0; i < 16; ++i) {
-            const bool in = i >= 2 && i < 14 && j >= 2 && j < 14;
-            EXPECT_EQ(rig.count(i, j), in ? 1.0f : 0.0f) << i << ", " << j;
-        }
+    for (const Path path : kPaths) {
+        SCOPED_TRACE(pathName(path));
+        // Four triangles around (8.5, 8.5), a pixel centre: exactly one takes it.
+        Rig rig(16, 16, path);
+        const Screen c{8.5, 8.5};
+        rig.drawScreen({c,
+                        {2.5, 2.5},
+                        {14.5, 2.5},
+                        c,
+                        {14.5, 2.5},
+                        {14.5, 14.5},
+                        c,
+                        {14.5, 14.5},
+                        {2.5, 14.5},
+                        c,
+                        {2.5, 14.5},
+                        {2.5, 2.5}},
+                       Topology::TriangleList);
+        for (int j = 0; j < 16; ++j)
+            for (int i = 0; i < 16; ++i) {
+                const bool in = i >= 2 && i < 14 && j >= 2 && j < 14;
+                EXPECT_EQ(rig.count(i, j), in ? 1.0f : 0.0f) << i << ", " << j;
+            }
+    }
 }
 
 // ---- 4. Culling -----------------------------------------------------------------------------------
 
 TEST(Culling, CullModeAgainstWindingAndFrontCounterClockwise) {
-    // On screen, y down: (2,2) -> (12,2) -> (2,12) turns clockwise.
-    const std::vector<Screen> cw = {{2, 2}, {12, 2}, {2, 12}};
-    const std::vector<Screen> ccw = {{2, 2}, {2, 12}, {12, 2}};
-    for (int winding = 0; winding < 2; ++winding)
-        for (bool frontCcw : {false, true})
-            for (CullMode cull : {CullMode::None, CullMode::Front, CullMode::Back}) {
-                Rig rig(16, 16);
-                RasterizerState rs;
-                rs.cullMode = cull;
-                rs.frontCounterClockwise = frontCcw;
-                rig.ctx().setRasterizerState(rs);
-                rig.drawScreen(winding == 0 ? cw : ccw, Topology::TriangleList);
-                const bool clockwise = winding == 0;
-                const bool front = frontCcw ? !clockwise : clockwise;
-                const bool drawn = cull == CullMode::None || (cull == CullMode::Back && front) ||
-                                   (cull == CullMode::Front && !front);
-                const std::string what = std::string(clockwise ? "cw" : "ccw") +
-                                         " frontCCW=" + (frontCcw ? "1" : "0") +
-                                         " cull=" + std::string(name(cull));
-                EXPECT_EQ(rig.stats().primitivesCulled, drawn ? 0u : 1u) << what;
-                // Centres (i + .5, j + .5) with i, j >= 2 and i + j < 13 (the hypotenuse x + y = 14
-                // is a right edge): 45.
-                EXPECT_EQ(rig.total(), drawn ? 45 : 0) << what;
-                EXPECT_EQ(rig.stats().psInvocations, drawn ? 45u : 0u) << what;
-            }
+    for (const Path path : kPaths) {
+        SCOPED_TRACE(pathName(path));
+        // On screen, y down: (2,2) -> (12,2) -> (2,12) turns clockwise.
+        const std::vector<Screen> cw = {{2, 2}, {12, 2}, {2, 12}};
+        const std::vector<Screen> ccw = {{2, 2}, {2, 12}, {12, 2}};
+        for (int winding = 0; winding < 2; ++winding)
+            for (bool frontCcw : {false, true})
+                for (CullMode cull : {CullMode::None, CullMode::Front, CullMode::Back}) {
+                    Rig rig(16, 16, path);
+                    RasterizerState rs;
+                    rs.cullMode = cull;
+                    rs.frontCounterClockwise = frontCcw;
+                    rig.ctx().setRasterizerState(rs);
+                    rig.drawScreen(winding == 0 ? cw : ccw, Topology::TriangleList);
+                    const bool clockwise = winding == 0;
+                    const bool front = frontCcw ? !clockwise : clockwise;
+                    const bool drawn = cull == CullMode::None || (cull == CullMode::Back && front) ||
+                                       (cull == CullMode::Front && !front);
+                    const std::string what = std::string(clockwise ? "cw" : "ccw") +
+                                             " frontCCW=" + (frontCcw ? "1" : "0") +
+                                             " cull=" + std::string(name(cull));
+                    EXPECT_EQ(rig.stats().primitivesCulled, drawn ? 0u : 1u) << what;
+                    // Centres (i + .5, j + .5) with i, j >= 2 and i + j < 13 (the hypotenuse x + y = 14
+                    // is a right edge): 45.
+                    EXPECT_EQ(rig.total(), drawn ? 45 : 0) << what;
+                    EXPECT_EQ(rig.stats().psInvocations, drawn ? 45u : 0u) << what;
+                }
+    }
 }
 
 // ---- 5. Points and lines --------------------------------------------------------------------------
@@ -829,49 +898,52 @@ TEST(Lines, StripSegmentsShareNoPixel) {
 // ---- 6. Depth -------------------------------------------------------------------------------------
 
 TEST(Depth, InterpolatedLinearlyInScreenSpace) {
-    struct Case {
-        Screen p[3];
-        float z[3];
-        float minDepth, maxDepth;
-    };
-    const Case cases[] = {
-        {{{3.25, 2.75}, {60.5, 10.125}, {17.0, 58.375}}, {0.1f, 0.9f, 0.45f}, 0.0f, 1.0f},
-        {{{62.0, 1.0}, {2.0, 30.5}, {40.75, 63.0}}, {0.75f, 0.0f, 1.0f}, 0.25f, 0.75f},
-        {{{-40.0, -20.0}, {120.0, 8.0}, {10.0, 130.0}}, {0.3f, 0.6f, 0.05f}, 0.0f, 1.0f},
-    };
-    for (const Case& c : cases) {
-        Rig rig(64, 64);
-        DepthTarget depth(64, 64);
-        depth.clear(1.0f);
-        rig.ctx().setRenderTargets(&rig.color(), &depth);
-        rig.setViewport({0, 0, 64, 64, c.minDepth, c.maxDepth});
-        std::vector<glm::vec4> clip;
-        double X[3], Y[3], Z[3];
-        for (int k = 0; k < 3; ++k) {
-            clip.push_back(toClip(c.p[k], rig.viewport(), c.z[k]));
-            const Fixed f = toFixed(clip.back(), rig.viewport());
-            X[k] = f.x / 256.0, Y[k] = f.y / 256.0;
-            Z[k] = c.minDepth + double(c.z[k]) * (double(c.maxDepth) - c.minDepth);
-        }
-        rig.drawClip(clip, Topology::TriangleList);
-        // The plane through the three snapped vertices: z = Z0 + a (x - X0) + b (y - Y0).
-        const double det = (X[1] - X[0]) * (Y[2] - Y[0]) - (X[2] - X[0]) * (Y[1] - Y[0]);
-        const double a = ((Z[1] - Z[0]) * (Y[2] - Y[0]) - (Z[2] - Z[0]) * (Y[1] - Y[0])) / det;
-        const double b = ((X[1] - X[0]) * (Z[2] - Z[0]) - (X[2] - X[0]) * (Z[1] - Z[0])) / det;
-        int checked = 0;
-        for (int y = 0; y < 64; ++y)
-            for (int x = 0; x < 64; ++x) {
-                if (rig.count(x, y) == 0) {
-                    EXPECT_EQ(depth.load(x, y), 1.0f);
-                    continue;
-                }
-                const double expected = Z[0] + a * (x + 0.5 - X[0]) + b * (y + 0.5 - Y[0]);
-                EXPECT_NEAR(depth.load(x, y), expected, 1e-6) << x << ", " << y;
-                EXPECT_GE(depth.load(x, y), c.minDepth);
-                EXPECT_LE(depth.load(x, y), c.maxDepth);
-                ++checked;
+    for (const Path path : kPaths) {
+        SCOPED_TRACE(pathName(path));
+        struct Case {
+            Screen p[3];
+            float z[3];
+            float minDepth, maxDepth;
+        };
+        const Case cases[] = {
+            {{{3.25, 2.75}, {60.5, 10.125}, {17.0, 58.375}}, {0.1f, 0.9f, 0.45f}, 0.0f, 1.0f},
+            {{{62.0, 1.0}, {2.0, 30.5}, {40.75, 63.0}}, {0.75f, 0.0f, 1.0f}, 0.25f, 0.75f},
+            {{{-40.0, -20.0}, {120.0, 8.0}, {10.0, 130.0}}, {0.3f, 0.6f, 0.05f}, 0.0f, 1.0f},
+        };
+        for (const Case& c : cases) {
+            Rig rig(64, 64, path);
+            DepthTarget depth(64, 64);
+            depth.clear(1.0f);
+            rig.ctx().setRenderTargets(&rig.color(), &depth);
+            rig.setViewport({0, 0, 64, 64, c.minDepth, c.maxDepth});
+            std::vector<glm::vec4> clip;
+            double X[3], Y[3], Z[3];
+            for (int k = 0; k < 3; ++k) {
+                clip.push_back(toClip(c.p[k], rig.viewport(), c.z[k]));
+                const Fixed f = toFixed(clip.back(), rig.viewport());
+                X[k] = f.x / 256.0, Y[k] = f.y / 256.0;
+                Z[k] = c.minDepth + double(c.z[k]) * (double(c.maxDepth) - c.minDepth);
             }
-        EXPECT_GT(checked, 500);
+            rig.drawClip(clip, Topology::TriangleList);
+            // The plane through the three snapped vertices: z = Z0 + a (x - X0) + b (y - Y0).
+            const double det = (X[1] - X[0]) * (Y[2] - Y[0]) - (X[2] - X[0]) * (Y[1] - Y[0]);
+            const double a = ((Z[1] - Z[0]) * (Y[2] - Y[0]) - (Z[2] - Z[0]) * (Y[1] - Y[0])) / det;
+            const double b = ((X[1] - X[0]) * (Z[2] - Z[0]) - (X[2] - X[0]) * (Z[1] - Z[0])) / det;
+            int checked = 0;
+            for (int y = 0; y < 64; ++y)
+                for (int x = 0; x < 64; ++x) {
+                    if (rig.count(x, y) == 0) {
+                        EXPECT_EQ(depth.load(x, y), 1.0f);
+                        continue;
+                    }
+                    const double expected = Z[0] + a * (x + 0.5 - X[0]) + b * (y + 0.5 - Y[0]);
+                    EXPECT_NEAR(depth.load(x, y), expected, 1e-6) << x << ", " << y;
+                    EXPECT_GE(depth.load(x, y), c.minDepth);
+                    EXPECT_LE(depth.load(x, y), c.maxDepth);
+                    ++checked;
+                }
+            EXPECT_GT(checked, 500);
+        }
     }
 }
 

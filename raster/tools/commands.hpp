@@ -6,5 +6,6 @@ namespace raster::tools {
 int bench(int argc, char** argv);
 int microbench(int argc, char** argv);
 int render(int argc, char** argv);
+int trace(int argc, char** argv);
 
 }  // namespace raster::tools

@@ -15,6 +15,7 @@ void usage(FILE* out) {
                  "  bench particles|fog [options]   time a benchmark scene of SCENES.md (raster bench --help)\n"
                  "  microbench [benchmark flags]    per-stage microbenchmarks (Google Benchmark: --benchmark_filter=...)\n"
                  "  render [scene...] [--out-dir D] render the lecture's scenes to PNG files\n"
+                 "  trace <scene> --stats           pipeline statistics of each draw of one frame\n"
                  "  help                            this text\n");
 }
 
@@ -30,6 +31,7 @@ int main(int argc, char** argv) {
         if (command == "bench") return raster::tools::bench(argc - 2, argv + 2);
         if (command == "microbench") return raster::tools::microbench(argc - 2, argv + 2);
         if (command == "render") return raster::tools::render(argc - 2, argv + 2);
+        if (command == "trace") return raster::tools::trace(argc - 2, argv + 2);
         if (command == "help" || command == "--help" || command == "-h") {
             usage(stdout);
             return 0;

@@ -53,6 +53,9 @@
 
 namespace raster {
 
+// drawStatisticsLog keeps at most this many draws between resets (a frame rarely has more).
+constexpr size_t kMaxLoggedDraws = 1 << 16;
+
 struct ContextOptions {
     unsigned threads = 0;    // 0: one per hardware thread
     bool reference = false;  // the double-precision reference pipeline
@@ -159,7 +162,12 @@ public:
     // ---- Statistics ----
     const PipelineStatistics& drawStatistics() const { return draw_stats_; }   // the last draw
     const PipelineStatistics& frameStatistics() const { return frame_stats_; }  // since resetFrameStatistics
-    void resetFrameStatistics() { frame_stats_ = {}; }
+    // One entry per draw since resetFrameStatistics, in draw order.
+    const std::vector<PipelineStatistics>& drawStatisticsLog() const { return draw_log_; }
+    void resetFrameStatistics() {
+        frame_stats_ = {};
+        draw_log_.clear();
+    }
 
     unsigned threads() const { return pool_.size(); }
     bool reference() const { return options_.reference; }
@@ -208,6 +216,7 @@ private:
     int target_count_ = 0;
     DepthTarget* depth_ = nullptr;
     PipelineStatistics draw_stats_, frame_stats_;
+    std::vector<PipelineStatistics> draw_log_;
     std::unordered_map<std::type_index, std::shared_ptr<void>> scratch_;
 };
 

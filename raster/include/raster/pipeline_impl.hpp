@@ -128,6 +128,7 @@ void Context::execute(const VS& vs, const GS& gs, const PS& ps, const DrawCall& 
     }
     draw_stats_ = stats;
     frame_stats_ += stats;
+    if (draw_log_.size() < kMaxLoggedDraws) draw_log_.push_back(stats);
 }
 
 template <class V>
