@@ -162,11 +162,25 @@ public:
     // ---- Statistics ----
     const PipelineStatistics& drawStatistics() const { return draw_stats_; }   // the last draw
     const PipelineStatistics& frameStatistics() const { return frame_stats_; }  // since resetFrameStatistics
+    // Stepping: draws are numbered from 0 since resetFrameStatistics. With a step limit, draws
+    // numbered `draws` and later are skipped (validated, not run), and draw `draws − 1` runs only
+    // its first `primitives` input primitives (in input-assembler order, instances included).
+    // Replaying a frame under growing limits steps it draw by draw and primitive by primitive.
+    struct StepLimit {
+        uint32_t draws = UINT32_MAX;
+        uint64_t primitives = UINT64_MAX;
+    };
+    void setStepLimit(const StepLimit& limit) { step_limit_ = limit; }
+    const StepLimit& stepLimit() const { return step_limit_; }
+    // Draws since resetFrameStatistics (run or skipped).
+    uint32_t drawCount() const { return draw_count_; }
+
     // One entry per draw since resetFrameStatistics, in draw order.
     const std::vector<PipelineStatistics>& drawStatisticsLog() const { return draw_log_; }
     void resetFrameStatistics() {
         frame_stats_ = {};
         draw_log_.clear();
+        draw_count_ = 0;
     }
 
     unsigned threads() const { return pool_.size(); }
@@ -217,6 +231,8 @@ private:
     DepthTarget* depth_ = nullptr;
     PipelineStatistics draw_stats_, frame_stats_;
     std::vector<PipelineStatistics> draw_log_;
+    StepLimit step_limit_;
+    uint32_t draw_count_ = 0;
     std::unordered_map<std::type_index, std::shared_ptr<void>> scratch_;
 };
 

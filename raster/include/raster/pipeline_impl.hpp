@@ -41,6 +41,8 @@ void Context::execute(const VS& vs, const GS& gs, const PS& ps, const DrawCall& 
                            "-vertex ones");
     }
     draw_stats_ = {};
+    const uint32_t draw_index = draw_count_++;
+    if (draw_index >= step_limit_.draws) return;
     if (call.instanceCount == 0 || assembled.fetch.empty()) return;
     checkVertexBuffers(program, vertex_buffers_, assembled.maxFetch, call.instanceCount - 1, call.startInstance);
     PipelineStatistics stats;
@@ -55,7 +57,8 @@ void Context::execute(const VS& vs, const GS& gs, const PS& ps, const DrawCall& 
     // ---- GS → clip → setup → bin, in parallel over chunks of primitives ----
     const uint32_t per_instance = uint32_t(assembled.fetch.size());
     const uint32_t prims_per_instance = assembled.primitiveCount();
-    const uint64_t total_prims = stats.iaPrimitives;
+    const uint64_t total_prims =
+        draw_index + 1 == step_limit_.draws ? std::min(stats.iaPrimitives, step_limit_.primitives) : stats.iaPrimitives;
     const uint32_t chunk_count =
         uint32_t(std::clamp<uint64_t>((total_prims + 1023) / 1024, 1, uint64_t(pool_.size()) * 8));
     const uint64_t chunk_size = (total_prims + chunk_count - 1) / chunk_count;
