@@ -77,6 +77,20 @@ struct PsColorCount {
 struct PsColor {
     glm::vec4 operator()(const ColorVertex& v) const { return v.color; }
 };
+// The same colour pass with an eight-wide pixel shader (4×2 blocks on RGBA8 targets).
+template <class T>
+struct ColorVertexT {
+    glm::vec<4, T> position;
+    glm::vec<4, T> color;
+};
+struct VsColorT {
+    ColorVertexT<float> operator()(const ColorIn& in) const { return {in.position, in.color}; }
+};
+struct PsColorWide {
+    using Input = ColorVertexT<float>;
+    glm::vec4 operator()(const Input& v) const { return v.color; }
+    glm::vec<4, Float8> operator()(const Wide<Input>& v) const { return v.color; }
+};
 
 const InputElementDesc kPositionLayout[] = {
     {"POSITION", 0, Format::R32G32B32A32_FLOAT, 0, 0, InputClassification::PerVertexData, 0}};
@@ -978,7 +992,7 @@ struct SceneImage {
 };
 
 SceneImage renderScene(const std::vector<ColorIn>& scene, ContextOptions options, Format format,
-                       const BlendState& blend, uint32_t width, uint32_t height) {
+                       const BlendState& blend, uint32_t width, uint32_t height, Path path = Path::Quads) {
     SceneImage img{RenderTarget(width, height, format), DepthTarget(width, height), {}};
     img.color.clear(glm::vec4(0.0f));
     img.depth.clear(1.0f);
@@ -997,6 +1011,8 @@ SceneImage renderScene(const std::vector<ColorIn>& scene, ContextOptions options
     ctx.setDepthStencilState(ds);
     if (format == Format::R32G32B32A32_FLOAT)
         ctx.draw(VsColor{}, PsColorCount{}, uint32_t(scene.size()));
+    else if (path == Path::Blocks)
+        ctx.draw(VsColorT{}, PsColorWide{}, uint32_t(scene.size()));
     else
         ctx.draw(VsColor{}, PsColor{}, uint32_t(scene.size()));
     img.stats = ctx.drawStatistics();
@@ -1023,6 +1039,18 @@ TEST(Determinism, SameImageForAnyThreadCount) {
             EXPECT_EQ(many.stats.psInvocations, one.stats.psInvocations) << threads << " threads";
             EXPECT_EQ(many.stats.cPrimitives, one.stats.cPrimitives) << threads << " threads";
             EXPECT_EQ(many.stats.fragmentsEarlyDepthKilled, one.stats.fragmentsEarlyDepthKilled) << threads;
+        }
+        // RGBA8, the lecture's additive blend, eight-wide shading.
+        const SceneImage one8 = renderScene(scene, {.threads = 1}, Format::R8G8B8A8_UNORM,
+                                            BlendState::additive(), 200, 150, Path::Blocks);
+        for (unsigned threads : {2u, 8u}) {
+            const SceneImage many8 = renderScene(scene, {.threads = threads}, Format::R8G8B8A8_UNORM,
+                                                 BlendState::additive(), 200, 150, Path::Blocks);
+            EXPECT_TRUE(many8.color == one8.color)
+                << s.triangles << " triangles, RGBA8, " << threads << " threads";
+            EXPECT_TRUE(many8.depth == one8.depth)
+                << s.triangles << " triangles, RGBA8, " << threads << " threads";
+            EXPECT_EQ(many8.stats.psInvocations, one8.stats.psInvocations) << threads << " threads";
         }
     }
 }
@@ -1054,21 +1082,28 @@ TEST(ReferencePipeline, SameCoverageAndColoursWithin1Over255) {
     // The fast pipeline tests depth before shading, the reference after.
     EXPECT_EQ(fast.stats.psInvocations, ref.stats.psInvocations - ref.stats.fragmentsLateDepthKilled);
 
-    // RGBA8 with the lecture's additive blend: the fast RGBA8 blender against double.
-    const SceneImage fast8 =
-        renderScene(scene, {.threads = 2}, Format::R8G8B8A8_UNORM, BlendState::additive(), 200, 150);
+    // RGBA8 with the lecture's additive blend: the fast RGBA8 blender, quad by quad and eight wide,
+    // against double.
     const SceneImage ref8 = renderScene(scene, {.threads = 2, .reference = true}, Format::R8G8B8A8_UNORM,
                                         BlendState::additive(), 200, 150);
-    int bad8 = 0;
-    for (uint32_t y = 0; y < 150; ++y)
-        for (uint32_t x = 0; x < 200; ++x) {
-            const glm::vec4 f = fast8.color.load(x, y), r = ref8.color.load(x, y);
-            for (int c = 0; c < 4; ++c)
-                if (!(std::abs(f[c] - r[c]) <= 1.0f / 255 + 1e-6f) && bad8++ < 5)
-                    ADD_FAILURE() << "RGBA8 channel " << c << " at (" << x << ", " << y << "): " << f[c] * 255
-                                  << " vs " << r[c] * 255;
-        }
-    EXPECT_EQ(bad8, 0);
+    for (const Path path : kPaths) {
+        const SceneImage fast8 = renderScene(scene, {.threads = 2}, Format::R8G8B8A8_UNORM,
+                                             BlendState::additive(), 200, 150, path);
+        int bad8 = 0;
+        for (uint32_t y = 0; y < 150; ++y)
+            for (uint32_t x = 0; x < 200; ++x) {
+                const glm::vec4 f = fast8.color.load(x, y), r = ref8.color.load(x, y);
+                for (int c = 0; c < 4; ++c)
+                    if (!(std::abs(f[c] - r[c]) <= 1.0f / 255 + 1e-6f) && bad8++ < 5)
+                        ADD_FAILURE() << pathName(path) << " RGBA8 channel " << c << " at (" << x << ", " << y
+                                      << "): " << f[c] * 255 << " vs " << r[c] * 255;
+                if (fast8.depth.load(x, y) != ref8.depth.load(x, y) && bad8++ < 5)
+                    ADD_FAILURE() << pathName(path) << " RGBA8 depth at (" << x << ", " << y << ")";
+            }
+        EXPECT_EQ(bad8, 0) << pathName(path);
+        EXPECT_EQ(fast8.stats.psInvocations, ref8.stats.psInvocations - ref8.stats.fragmentsLateDepthKilled)
+            << pathName(path);
+    }
 }
 
 }  // namespace

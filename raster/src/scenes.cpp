@@ -43,6 +43,12 @@ glm::mat4 projection(const SceneOptions& o) {
     return glm::perspectiveRH_ZO(glm::radians(60.0f), float(o.width) / float(o.height), 0.1f, 100.0f);
 }
 
+glm::mat4 lookAt(const SceneCamera& c) { return glm::lookAtRH(c.eye, c.target, glm::vec3(0, 1, 0)); }
+
+// SCENES.md's cameras.
+const SceneCamera kParticlesCamera{{0, 0.3f, 4}, {0, 0, 0}};
+const SceneCamera kFogCamera{{0, 1.5f, 6}, {0, 0.5f, -10}};
+
 void beginFrame(Context& context, RenderTarget& color, DepthTarget& depth) {
     color.clear({0, 0, 0, 1});
     depth.clear(1.0f);
@@ -57,7 +63,7 @@ class ParticlesScene final : public Scene {
 public:
     explicit ParticlesScene(const SceneOptions& o) : texture_(o.texture.empty() ? makeFireTexture()
                                                                                    : Texture2D::fromPng(o.texture)) {
-        const glm::mat4 view = glm::lookAtRH(glm::vec3(0, 0.3f, 4), glm::vec3(0), glm::vec3(0, 1, 0));
+        const glm::mat4 view = lookAt(o.camera.value_or(kParticlesCamera));
         const glm::mat4 proj = projection(o);
         const glm::mat4 view_proj = proj * view;
         const std::vector<glm::vec3> occluder = {{-0.6f, -1.2f, 0}, {0.6f, -1.2f, 0}, {0.6f, 0.4f, 0},
@@ -137,8 +143,9 @@ void pushCube(std::vector<LitVertexData>& v, glm::vec3 c, float h) {
 class FogScene final : public Scene {
 public:
     explicit FogScene(const SceneOptions& o) {
-        const glm::vec3 eye(0, 1.5f, 6);
-        const glm::mat4 view = glm::lookAtRH(eye, glm::vec3(0, 0.5f, -10), glm::vec3(0, 1, 0));
+        const SceneCamera camera = o.camera.value_or(kFogCamera);
+        const glm::vec3 eye = camera.eye;
+        const glm::mat4 view = lookAt(camera);
         const glm::mat4 view_proj = projection(o) * view;
         std::vector<LitVertexData> v;
         const glm::vec3 up(0, 1, 0);
@@ -195,12 +202,33 @@ private:
 
 std::vector<std::string> sceneNames() { return {"particles", "fog"}; }
 
+SceneCamera defaultCamera(std::string_view name) {
+    if (name == "particles") return kParticlesCamera;
+    if (name == "fog") return kFogCamera;
+    throw Error(ErrorCode::InvalidArgument, "unknown scene '" + std::string(name) + "' (known: particles, fog)");
+}
+
 std::unique_ptr<Scene> makeScene(std::string_view name, const SceneOptions& options) {
     RASTER_REQUIRE(options.width > 0 && options.height > 0 && options.width <= RenderTarget::kMaxSize &&
                        options.height <= RenderTarget::kMaxSize,
                    InvalidArgument,
                    "image size " + std::to_string(options.width) + "x" + std::to_string(options.height) +
                        " is outside 1.." + std::to_string(RenderTarget::kMaxSize));
+    if (options.camera) {
+        const SceneCamera& c = *options.camera;
+        const glm::vec3 view = c.target - c.eye;
+        const auto text = [](glm::vec3 v) {
+            return "(" + std::to_string(v.x) + ", " + std::to_string(v.y) + ", " + std::to_string(v.z) + ")";
+        };
+        // Look-at needs a direction, and one that is not vertical (+y is its up).
+        bool finite = true;
+        for (int k = 0; k < 3; ++k) finite = finite && std::isfinite(c.eye[k]) && std::isfinite(c.target[k]);
+        RASTER_REQUIRE(finite && view.x * view.x + view.z * view.z > 1e-12f * glm::dot(view, view) &&
+                           glm::dot(view, view) > 0.0f,
+                       InvalidArgument,
+                       "camera eye " + text(c.eye) + " and target " + text(c.target) +
+                           " do not make a view direction (they must be finite, apart, and not one above the other)");
+    }
     if (name == "particles") {
         RASTER_REQUIRE(options.count <= 50'000'000, InvalidArgument,
                        "particle count " + std::to_string(options.count) + " is above 50000000");

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <cstdio>
 #include <limits>
 
@@ -125,7 +126,10 @@ Texture2D Texture2D::build(uint32_t width, uint32_t height, Format format, std::
     t.texels_ = std::move(texels);
     t.bytes_ = std::move(bytes);
     t.levels_.push_back({int(width), int(height), 0});
-    if (!mipmaps) return t;
+    if (!mipmaps) {
+        t.buildFootprints();
+        return t;
+    }
 
     const bool unorm = format == Format::R8G8B8A8_UNORM;
     while (t.levels_.back().width > 1 || t.levels_.back().height > 1) {
@@ -265,6 +269,30 @@ glm::vec<4, Float8> Texture2D::sampleLanes(const SamplerState& s, const glm::vec
         out.x.set(lane, c.x), out.y.set(lane, c.y), out.z.set(lane, c.z), out.w.set(lane, c.w);
     }
     return out;
+}
+
+void Texture2D::buildFootprints() {
+    footprints_.clear();
+    const Level& level = levels_[0];
+    if (format_ != Format::R8G8B8A8_UNORM || levels_.size() != 1 || level.width > kMaxFootprintSide ||
+        level.height > kMaxFootprintSide)
+        return;
+    const int w = level.width, h = level.height;
+    footprints_.resize(size_t(w + 1) * size_t(h + 1) * 16);
+    auto texelBytes = [&](int x, int y, uint8_t* out) {
+        x = std::clamp(x, 0, w - 1);
+        y = std::clamp(y, 0, h - 1);
+        std::memcpy(out, &bytes_[4 * (size_t(y) * size_t(w) + size_t(x))], 4);
+    };
+    for (int j = -1; j < h; ++j) {
+        for (int i = -1; i < w; ++i) {
+            uint8_t* f = &footprints_[16 * (size_t(j + 1) * size_t(w + 1) + size_t(i + 1))];
+            texelBytes(i, j, f);
+            texelBytes(i + 1, j, f + 4);
+            texelBytes(i, j + 1, f + 8);
+            texelBytes(i + 1, j + 1, f + 12);
+        }
+    }
 }
 
 }  // namespace raster

@@ -16,6 +16,7 @@ void usage(FILE* out) {
                  "  microbench [benchmark flags]    per-stage microbenchmarks (Google Benchmark: --benchmark_filter=...)\n"
                  "  render [scene...] [--out-dir D] render the lecture's scenes to PNG files\n"
                  "  trace <scene> --stats           pipeline statistics of each draw of one frame\n"
+                 "  view <scene> [options]          the SDL2 viewer: step through draws and primitives (raster view --help)\n"
                  "  help                            this text\n");
 }
 
@@ -32,6 +33,7 @@ int main(int argc, char** argv) {
         if (command == "microbench") return raster::tools::microbench(argc - 2, argv + 2);
         if (command == "render") return raster::tools::render(argc - 2, argv + 2);
         if (command == "trace") return raster::tools::trace(argc - 2, argv + 2);
+        if (command == "view") return raster::tools::view(argc - 2, argv + 2);
         if (command == "help" || command == "--help" || command == "-h") {
             usage(stdout);
             return 0;

@@ -135,6 +135,14 @@ class Texture2D {
     glm::vec4 sampleImplicitLod(const SamplerState& sampler, glm::vec2 uv) const;
     glm::vec<4, Float8> sampleLanes(const SamplerState& sampler, const glm::vec<2, Float8>& uv) const;
 
+    // Bilinear footprints for the eight-wide clamp path: for every texel coordinate pair (i, j) in
+    // [−1, w−1] × [−1, h−1], the four clamped texels (i, j) (i+1, j) (i, j+1) (i+1, j+1) as 16 bytes,
+    // so that one load fetches what a bilinear tap needs. Built for one-level RGBA8 textures up to
+    // kMaxFootprintSide on a side ((w+1)(h+1)·16 bytes, 4 MB at most).
+    static constexpr int kMaxFootprintSide = 512;
+    void buildFootprints();
+    std::vector<uint8_t> footprints_;
+
     std::vector<Level> levels_;
     std::vector<glm::vec4> texels_;  // every level, as the shader reads it (UNORM already n/255)
     std::vector<uint8_t> bytes_;     // UNORM only: the stored bytes of every level
@@ -346,6 +354,37 @@ template <class UV>
     const Float8 b = detail::clampTexelCoord8(uv.y * h - Float8(0.5f));
     const Int8 i = detail::floorToInt8(a), j = detail::floorToInt8(b);
     const Float8 alpha = a - toFloat(i), beta = b - toFloat(j);
+#if defined(__AVX2__)
+    if (!footprints_.empty()) {
+        // One 16-byte load per lane, then a transpose into one register per channel holding, per
+        // lane, the channel's bytes of the four texels (00, 10, 01, 11).
+        const Int8 ii = max(Int8(-1), min(i, Int8(level.width - 1))) + Int8(1);
+        const Int8 jj = max(Int8(-1), min(j, Int8(level.height - 1))) + Int8(1);
+        alignas(32) int32_t index[8];
+        const Int8 flat = jj * Int8(level.width + 1) + ii;
+        std::memcpy(index, &flat.v, sizeof index);
+        const uint8_t* f = footprints_.data();
+        auto load = [&](int l) { return _mm_loadu_si128(reinterpret_cast<const __m128i*>(f + 16 * size_t(index[l]))); };
+        const __m256i by_channel = _mm256_setr_epi8(0, 4, 8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15, 0, 4, 8, 12, 1,
+                                                    5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15);
+        const __m256i y0 = _mm256_shuffle_epi8(_mm256_set_m128i(load(4), load(0)), by_channel);
+        const __m256i y1 = _mm256_shuffle_epi8(_mm256_set_m128i(load(5), load(1)), by_channel);
+        const __m256i y2 = _mm256_shuffle_epi8(_mm256_set_m128i(load(6), load(2)), by_channel);
+        const __m256i y3 = _mm256_shuffle_epi8(_mm256_set_m128i(load(7), load(3)), by_channel);
+        const __m256i t0 = _mm256_unpacklo_epi32(y0, y1), t1 = _mm256_unpackhi_epi32(y0, y1);
+        const __m256i t2 = _mm256_unpacklo_epi32(y2, y3), t3 = _mm256_unpackhi_epi32(y2, y3);
+        const Int8 channel[4] = {simd::I32x8(_mm256_unpacklo_epi64(t0, t2)), simd::I32x8(_mm256_unpackhi_epi64(t0, t2)),
+                                 simd::I32x8(_mm256_unpacklo_epi64(t1, t3)), simd::I32x8(_mm256_unpackhi_epi64(t1, t3))};
+        const Float8 k(1.0f / 255.0f);
+        auto texel = [&](int t) {  // t: 0 = (i, j), 1 = (i+1, j), 2 = (i, j+1), 3 = (i+1, j+1)
+            return glm::vec<4, Float8>(toFloat((channel[0] >> (8 * t)) & Int8(0xFF)) * k,
+                                       toFloat((channel[1] >> (8 * t)) & Int8(0xFF)) * k,
+                                       toFloat((channel[2] >> (8 * t)) & Int8(0xFF)) * k,
+                                       toFloat((channel[3] >> (8 * t)) & Int8(0xFF)) * k);
+        };
+        return detail::lerp8(detail::lerp8(texel(0), texel(1), alpha), detail::lerp8(texel(2), texel(3), alpha), beta);
+    }
+#endif
     const Int8 x0 = detail::clampTexel8(i, level.width), x1 = detail::clampTexel8(i + Int8(1), level.width);
     const Int8 row0 = detail::clampTexel8(j, level.height) * Int8(level.width);
     const Int8 row1 = detail::clampTexel8(j + Int8(1), level.height) * Int8(level.width);

@@ -1,0 +1,51 @@
+// What the viewer can be asked to do, from a key, the mouse or a script token. Keys and scripts
+// share one vocabulary, so a script is exactly a user at the keyboard (see keyNames()).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace raster::tools {
+
+enum class Verb {
+    NextDraw,           // N
+    PreviousDraw,       // P
+    NextPrimitive,      // ]
+    PreviousPrimitive,  // [
+    WholeFrame,         // 0
+    ToggleDepth,        // D
+    Screenshot,         // S, F12
+    ToggleHelp,         // H, F1
+    ToggleStatistics,   // I
+    ResetCamera,        // R
+    Fly,                // W A E, Shift+W/A/S/D/Q/E, arrows, PageUp/PageDown: dx/dy/dz below
+    Orbit,              // mouse drag; script drag:X0,Y0,X1,Y1
+    Zoom,               // wheel; script wheel:N
+    Click,              // a click without a drag; script click:X,Y
+    Resize,             // script resize:WxH (a user drags the window's border)
+    Wait,               // script wait: until the latest render is shown
+    Quit,               // Esc, Q
+};
+
+struct Action {
+    Verb verb;
+    int x = 0, y = 0, z = 0;  // Fly: forward, right, up steps; Orbit: dx, dy; Zoom: x notches;
+                              // Click: window pixel; Resize: width, height
+};
+
+// One key name (case-insensitive: "n", "]", "F12", "Esc", "Shift+S", "PageUp") → its action, or
+// nothing for a key that means nothing.
+std::optional<Action> findKey(std::string_view name);
+// One key name (case-insensitive: "n", "]", "F12", "Esc", "Shift+S", "PageUp") → its action.
+// Throws Error(InvalidArgument) naming the key for a key that means nothing.
+Action actionForKey(std::string_view name);
+// Space-separated tokens: key names, click:X,Y, drag:X0,Y0,X1,Y1, wheel:N, resize:WxH, wait.
+// Throws Error(InvalidArgument) naming the first token that is not one.
+std::vector<Action> parseScript(std::string_view script);
+// The help text: every key and what it does, one per line.
+const std::vector<std::string>& keyHelp();
+
+}  // namespace raster::tools

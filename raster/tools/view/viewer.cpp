@@ -1,0 +1,296 @@
+#include "viewer.hpp"
+
+#include <SDL.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <optional>
+
+#include "camera.hpp"
+
+namespace raster::tools {
+namespace {
+
+constexpr int kDragThreshold = 3;  // window pixels a press may wander and still be a click
+
+// The name actionForKey knows a key by; empty for keys the viewer ignores. `fly` (Shift or the
+// right mouse button held) turns W A S D Q E into flying.
+std::string keyName(const SDL_Keysym& key, bool fly) {
+    const SDL_Keycode k = key.sym;
+    if (k >= SDLK_a && k <= SDLK_z) {
+        const std::string letter(1, char(k));
+        const bool fly_key = std::string_view("wasdqe").find(letter[0]) != std::string_view::npos;
+        return fly && fly_key ? "shift+" + letter : letter;
+    }
+    switch (k) {
+        case SDLK_RIGHTBRACKET:
+            return "]";
+        case SDLK_LEFTBRACKET:
+            return "[";
+        case SDLK_0:
+        case SDLK_KP_0:
+            return "0";
+        case SDLK_F1:
+            return "f1";
+        case SDLK_F12:
+            return "f12";
+        case SDLK_ESCAPE:
+            return "esc";
+        case SDLK_UP:
+            return "up";
+        case SDLK_DOWN:
+            return "down";
+        case SDLK_LEFT:
+            return "left";
+        case SDLK_RIGHT:
+            return "right";
+        case SDLK_PAGEUP:
+            return "pageup";
+        case SDLK_PAGEDOWN:
+            return "pagedown";
+        default:
+            return {};
+    }
+}
+
+}  // namespace
+
+Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
+    camera_ = options_.sceneOptions.camera.value_or(defaultCamera(options_.scene));
+    camera_moved_ = options_.sceneOptions.camera.has_value();
+    width_ = options_.sceneOptions.width;
+    height_ = options_.sceneOptions.height;
+    // The caller's SDL_VIDEODRIVER wins, so a headless run can still be pointed at a display.
+    if (options_.headless) setenv("SDL_VIDEODRIVER", "offscreen", 0);
+    RASTER_REQUIRE(SDL_Init(SDL_INIT_VIDEO) == 0, InvalidState,
+                   std::string("SDL cannot start its video subsystem: ") + SDL_GetError() +
+                       (options_.headless ? "" : " (no display? run with --headless)"));
+    // Pixels stay square and sharp when the framebuffer is scaled: stepping is about single pixels.
+    SDL_SetHint(SDL_HINT_RENDER_SCALE_QUALITY, "nearest");
+    window_ = SDL_CreateWindow(("raster view: " + options_.scene).c_str(), SDL_WINDOWPOS_UNDEFINED,
+                               SDL_WINDOWPOS_UNDEFINED, int(width_), int(height_), SDL_WINDOW_RESIZABLE);
+    if (window_) renderer_ = SDL_CreateRenderer(window_, -1, 0);
+    // Without a GPU driver (Xvfb, offscreen) SDL's software renderer always works.
+    if (window_ && !renderer_) renderer_ = SDL_CreateRenderer(window_, -1, SDL_RENDERER_SOFTWARE);
+    if (!renderer_) {
+        const std::string why = SDL_GetError();
+        if (window_) SDL_DestroyWindow(window_);
+        SDL_Quit();
+        throw Error(ErrorCode::InvalidState, "SDL cannot open a " + std::to_string(width_) + "x" +
+                                                 std::to_string(height_) + " window: " + why);
+    }
+    SDL_RendererInfo info{};
+    SDL_GetRendererInfo(renderer_, &info);
+    say("raster view: " + options_.scene + ", video driver " + SDL_GetCurrentVideoDriver() + ", renderer " +
+        info.name);
+    wake_event_ = SDL_RegisterEvents(1);
+    const uint32_t wake = wake_event_;
+    worker_ = std::make_unique<RenderWorker>(options_.scene, options_.context, [wake] {
+        SDL_Event e{};
+        e.type = wake;
+        SDL_PushEvent(&e);  // thread-safe: wakes the event loop when a frame is ready
+    });
+}
+
+Viewer::~Viewer() {
+    worker_.reset();
+    if (texture_) SDL_DestroyTexture(texture_);
+    SDL_DestroyRenderer(renderer_);
+    SDL_DestroyWindow(window_);
+    SDL_Quit();
+}
+
+void Viewer::say(const std::string& line) {
+    std::printf("%s\n", line.c_str());
+    std::fflush(stdout);
+    messages_.push_back(line);
+}
+
+void Viewer::run() {
+    queue_.assign(options_.script.begin(), options_.script.end());
+    requestRender();
+    while (!quit_) {
+        SDL_Event event;
+        // Short waits while something is due (a render's clock, script actions), long ones when idle.
+        const int timeout = !upToDate() || !queue_.empty() ? 15 : 200;
+        if (SDL_WaitEventTimeout(&event, timeout)) {
+            handleEvent(event);
+            while (SDL_PollEvent(&event)) handleEvent(event);
+        }
+        if (std::shared_ptr<RenderedFrame> frame = worker_->takeFinished()) show(std::move(frame));
+        followWindowSize();
+        runQueue();
+        if (options_.headless && queue_.empty() && upToDate()) quit_ = true;
+        if (dirty_ || !upToDate()) drawWindow();
+    }
+}
+
+void Viewer::handleEvent(const SDL_Event& event) {
+    dirty_ = true;
+    const bool right_down = SDL_GetMouseState(nullptr, nullptr) & SDL_BUTTON(SDL_BUTTON_RIGHT);
+    switch (event.type) {
+        case SDL_QUIT:
+            quit_ = true;
+            break;
+        case SDL_KEYDOWN: {
+            const bool fly = (event.key.keysym.mod & KMOD_SHIFT) || right_down;
+            const std::string name = keyName(event.key.keysym, fly);
+            if (const std::optional<Action> action = findKey(name)) queue_.push_back(*action);
+            break;
+        }
+        case SDL_MOUSEBUTTONDOWN:
+            if (event.button.button == SDL_BUTTON_LEFT) {
+                left_down_ = true, dragging_ = false;
+                press_x_ = last_x_ = event.button.x;
+                press_y_ = last_y_ = event.button.y;
+            }
+            break;
+        case SDL_MOUSEMOTION:
+            if (!left_down_) break;
+            if (!dragging_ &&
+                std::abs(event.motion.x - press_x_) + std::abs(event.motion.y - press_y_) > kDragThreshold)
+                dragging_ = true;
+            if (dragging_) {
+                queue_.push_back({Verb::Orbit, event.motion.x - last_x_, event.motion.y - last_y_});
+                last_x_ = event.motion.x, last_y_ = event.motion.y;
+            }
+            break;
+        case SDL_MOUSEBUTTONUP:
+            if (event.button.button == SDL_BUTTON_LEFT && left_down_) {
+                if (!dragging_) queue_.push_back({Verb::Click, event.button.x, event.button.y});
+                left_down_ = dragging_ = false;
+            }
+            break;
+        case SDL_MOUSEWHEEL: {
+            const int notches =
+                event.wheel.direction == SDL_MOUSEWHEEL_FLIPPED ? -event.wheel.y : event.wheel.y;
+            if (notches != 0) queue_.push_back({Verb::Zoom, notches});
+            break;
+        }
+        default:
+            break;
+    }
+}
+
+void Viewer::runQueue() {
+    while (!queue_.empty() && !quit_) {
+        if (!perform(queue_.front())) return;  // later actions wait their turn, as typed
+        queue_.pop_front();
+        dirty_ = true;
+    }
+}
+
+bool Viewer::perform(const Action& a) {
+    const auto move_camera = [&](const SceneCamera& c) {
+        camera_ = c;
+        camera_moved_ = true;
+        requestRender();
+    };
+    switch (a.verb) {
+        case Verb::NextDraw:
+        case Verb::PreviousDraw:
+        case Verb::NextPrimitive:
+        case Verb::PreviousPrimitive:
+            if (!cursor_.hasShape()) return false;  // known once the first whole frame is rendered
+            if (a.verb == Verb::NextDraw)
+                cursor_.nextDraw();
+            else if (a.verb == Verb::PreviousDraw)
+                cursor_.previousDraw();
+            else if (a.verb == Verb::NextPrimitive)
+                cursor_.nextPrimitive();
+            else
+                cursor_.previousPrimitive();
+            requestRender();
+            return true;
+        case Verb::WholeFrame:
+            cursor_.showAll(), requestRender();
+            return true;
+        case Verb::ToggleDepth:
+            depth_view_ = !depth_view_, uploadImage();
+            return true;
+        case Verb::ToggleHelp:
+            help_ = !help_, statistics_ = statistics_ && !help_;
+            return true;
+        case Verb::ToggleStatistics:
+            statistics_ = !statistics_, help_ = help_ && !statistics_;
+            return true;
+        case Verb::ResetCamera:
+            camera_ = defaultCamera(options_.scene), camera_moved_ = false, requestRender();
+            return true;
+        case Verb::Fly:
+            move_camera(fly(camera_, a.x, a.y, a.z));
+            return true;
+        case Verb::Orbit:
+            move_camera(orbit(camera_, float(a.x), float(a.y)));
+            return true;
+        case Verb::Zoom:
+            move_camera(zoom(camera_, a.x));
+            return true;
+        case Verb::Resize:
+            SDL_SetWindowSize(window_, a.x, a.y);
+            followWindowSize();
+            return true;
+        case Verb::Screenshot:
+            if (!upToDate() || !shown_) return false;
+            saveScreenshot();
+            return true;
+        case Verb::Click:
+            if (!upToDate() || !shown_) return false;
+            reportPixel(a.x, a.y);
+            return true;
+        case Verb::Wait:
+            return upToDate();
+        case Verb::Quit:
+            quit_ = true;
+            return true;
+    }
+    return true;
+}
+
+void Viewer::requestRender() {
+    RenderRequest request;
+    request.scene = options_.sceneOptions;
+    request.scene.width = width_;
+    request.scene.height = height_;
+    request.scene.camera = camera_moved_ ? std::optional<SceneCamera>(camera_) : std::nullopt;
+    request.limit = cursor_.limit();
+    request.stepLabel = cursor_.label();
+    requested_id_ = worker_->request(std::move(request));
+}
+
+void Viewer::followWindowSize() {
+    int w = 0, h = 0;
+    SDL_GetWindowSize(window_, &w, &h);
+    if (w <= 0 || h <= 0 || (uint32_t(w) == width_ && uint32_t(h) == height_)) return;
+    width_ = uint32_t(w), height_ = uint32_t(h);
+    requestRender();
+}
+
+void Viewer::show(std::shared_ptr<RenderedFrame> frame) {
+    shown_id_ = frame->id;
+    dirty_ = true;
+    if (!frame->error.empty()) {
+        render_error_ = frame->error;
+        if (options_.headless)
+            throw Error(ErrorCode::InvalidState, "rendering " + options_.scene + " failed: " + render_error_);
+        std::fprintf(stderr, "raster view: rendering %s failed: %s\n", options_.scene.c_str(),
+                     render_error_.c_str());
+        return;  // the last good frame stays
+    }
+    render_error_.clear();
+    const Context::StepLimit& limit = frame->request.limit;
+    const bool whole = limit.draws == UINT32_MAX && limit.primitives == UINT64_MAX;
+    if (whole) frame->request.stepLabel = "whole frame, " + std::to_string(frame->drawCount) + " draws";
+    if (whole && !cursor_.hasShape()) {
+        std::vector<uint64_t> shape;
+        for (const PipelineStatistics& s : frame->drawLog) shape.push_back(s.iaPrimitives);
+        // The log leaves out draws that run nothing (no instances or no vertices), which would shift
+        // the counts onto the wrong draws; the lecture's scenes have none.
+        shape.resize(frame->drawCount, 0);
+        cursor_.setShape(std::move(shape));
+    }
+    shown_ = std::move(frame);
+    uploadImage();
+}
+
+}  // namespace raster::tools

@@ -1,0 +1,204 @@
+// The viewer's pictures: the image the window shows, the text over it, screenshots and pixel reports.
+#include <SDL.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+
+#include "overlay.hpp"
+#include "raster/image_io.hpp"
+#include "viewer.hpp"
+
+namespace raster::tools {
+namespace {
+
+constexpr uint8_t kFarthestGrey = 224;  // the farthest drawn depth; 255 is left for depth 1 (cleared)
+
+// Depth as grey, stretched over the depths the frame drew, so that a scene 4 units away (depth
+// ≈ 0.98 under a 0.1 near plane) is not all white: nearest black, farthest 224, depth 1 white.
+std::vector<uint8_t> depthImage(const DepthTarget& depth) {
+    const size_t n = size_t(depth.width()) * depth.height();
+    const float* d = depth.data();
+    float lo = 1.0f, hi = 0.0f;
+    for (size_t i = 0; i < n; ++i)
+        if (d[i] < 1.0f) lo = std::min(lo, d[i]), hi = std::max(hi, d[i]);
+    std::vector<uint8_t> rgba(4 * n);
+    for (size_t i = 0; i < n; ++i) {
+        uint8_t v = 255;
+        if (d[i] < 1.0f) v = hi > lo ? uint8_t(std::lround(kFarthestGrey * (d[i] - lo) / (hi - lo))) : 0;
+        rgba[4 * i] = rgba[4 * i + 1] = rgba[4 * i + 2] = v;
+        rgba[4 * i + 3] = 255;
+    }
+    return rgba;
+}
+
+std::string milliseconds(double ms) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.1f ms", ms);
+    return text;
+}
+
+// The panel of the I key: the last few draws of the shown frame (the one being stepped last) and
+// the frame's sum, one statistic a row; rows that are 0 everywhere are left out to save room.
+TextPanel statisticsPanel(const RenderedFrame& frame, size_t drawColumns) {
+    const size_t kMaxDrawColumns = drawColumns;
+    const size_t first = frame.drawLog.size() > kMaxDrawColumns ? frame.drawLog.size() - kMaxDrawColumns : 0;
+    std::vector<std::vector<std::string>> columns;  // per column: the values' lines
+    std::vector<std::string> names, header = {"statistic"};
+    const auto add_column = [&](const PipelineStatistics& s, const std::string& title) {
+        header.push_back(title);
+        std::istringstream lines(s.toString());
+        std::vector<std::string> values;
+        std::string name, value;
+        while (lines >> name >> value) {
+            if (columns.empty()) names.push_back(name);
+            values.push_back(value);
+        }
+        columns.push_back(std::move(values));
+    };
+    for (size_t d = first; d < frame.drawLog.size(); ++d)
+        add_column(frame.drawLog[d], "draw " + std::to_string(d + 1));
+    add_column(frame.frameStatistics, "frame");
+    TextPanel panel;
+    std::string line;
+    for (const std::string& h : header) line += (line.empty() ? "" : "\t") + h;
+    panel.lines.push_back(line);
+    size_t zero_rows = 0;
+    for (size_t r = 0; r < names.size(); ++r) {
+        line = names[r];
+        bool zero = true;
+        for (const auto& column : columns) {
+            line += '\t';
+            line += column[r];
+            zero = zero && column[r] == "0";
+        }
+        if (zero)
+            ++zero_rows;
+        else
+            panel.lines.push_back(line);
+    }
+    if (zero_rows > 0) panel.lines.push_back(std::to_string(zero_rows) + " more are 0 everywhere");
+    return panel;
+}
+
+}  // namespace
+
+void Viewer::uploadImage() {
+    dirty_ = true;
+    if (!shown_) return;
+    const uint32_t w = shown_->color.width(), h = shown_->color.height();
+    image_ = depth_view_ ? depthImage(shown_->depth) : shown_->color.toRgba8();
+    if (!texture_ || texture_width_ != w || texture_height_ != h) {
+        if (texture_) SDL_DestroyTexture(texture_);
+        // RGBA32 is R, G, B, A in memory order on any endianness: the render target's own layout.
+        texture_ =
+            SDL_CreateTexture(renderer_, SDL_PIXELFORMAT_RGBA32, SDL_TEXTUREACCESS_STREAMING, int(w), int(h));
+        RASTER_REQUIRE(texture_ != nullptr, InvalidState,
+                       "SDL cannot make a " + std::to_string(w) + "x" + std::to_string(h) +
+                           " texture: " + SDL_GetError());
+        texture_width_ = w, texture_height_ = h;
+    }
+    SDL_UpdateTexture(texture_, nullptr, image_.data(), int(4 * w));
+}
+
+void Viewer::drawWindow() {
+    composeWindow();
+    SDL_RenderPresent(renderer_);
+}
+
+void Viewer::composeWindow() {
+    dirty_ = false;
+    SDL_SetRenderDrawColor(renderer_, 0, 0, 0, 255);
+    SDL_RenderClear(renderer_);
+    // While a new size renders, the last frame is stretched to the window.
+    if (texture_) SDL_RenderCopy(renderer_, texture_, nullptr, nullptr);
+
+    int window_width = 0, window_height = 0;
+    SDL_GetRendererOutputSize(renderer_, &window_width, &window_height);
+    const int scale = window_width >= 900 ? 2 : 1;
+    TextPanel hud;
+    hud.x = hud.y = 4;
+    if (shown_) {
+        hud.lines.push_back(options_.scene + "  " + std::to_string(shown_->color.width()) + "x" +
+                            std::to_string(shown_->color.height()) + "  frame " +
+                            milliseconds(shown_->milliseconds) + (depth_view_ ? "  [depth]" : "") +
+                            "   H: help");
+        hud.lines.push_back(shown_->request.stepLabel);
+    }
+    if (!upToDate()) {
+        const double seconds = worker_->runningSeconds();
+        char text[64];
+        std::snprintf(text, sizeof text, "rendering... %.1f s", std::max(seconds, 0.0));
+        hud.lines.push_back(text);
+    }
+    if (!render_error_.empty()) hud.lines.push_back("render failed: " + render_error_);
+    drawPanel(renderer_, hud, scale);
+    // Help and statistics take turns below the status lines (H and I switch between them).
+    const int below_hud = 4 + panelSize(hud, scale).y + 4;
+    if (help_) {
+        TextPanel help;
+        help.x = 4, help.y = below_hud;
+        help.lines = keyHelp();
+        help.color = {255, 240, 160, 255};
+        drawPanel(renderer_, help, scale);
+    } else if (statistics_ && shown_) {
+        TextPanel statistics = statisticsPanel(*shown_, scale == 2 ? 3 : 1);
+        statistics.x = -4, statistics.y = below_hud;
+        drawPanel(renderer_, statistics, scale);
+    }
+}
+
+void Viewer::saveScreenshot() {
+    std::error_code ec;
+    std::filesystem::create_directories(options_.screenshotDir, ec);
+    RASTER_REQUIRE(!ec, BadFile,
+                   "cannot create screenshot directory '" + options_.screenshotDir + "': " + ec.message());
+    // Numbered on from the last one, skipping names already taken: earlier runs' shots are kept.
+    std::string path;
+    do {
+        char name[64];
+        std::snprintf(name, sizeof name, "-%04d.png", ++screenshot_counter_);
+        path = (std::filesystem::path(options_.screenshotDir) / (options_.scene + name)).string();
+    } while (std::filesystem::exists(path));
+    writePngRgba8(path, shown_->color.width(), shown_->color.height(), image_);
+    screenshots_.push_back(path);
+    say("screenshot " + path + " (" + std::to_string(shown_->color.width()) + "x" +
+        std::to_string(shown_->color.height()) + ", " + (depth_view_ ? "depth" : "colour") + ", " +
+        shown_->request.stepLabel + ")");
+    if (!options_.screenshotWindow) return;
+    // The window as the user sees it, text included: composed, read back, then presented.
+    composeWindow();
+    int w = 0, h = 0;
+    SDL_GetRendererOutputSize(renderer_, &w, &h);
+    std::vector<uint8_t> window(size_t(4) * w * h);
+    const bool read =
+        SDL_RenderReadPixels(renderer_, nullptr, SDL_PIXELFORMAT_RGBA32, window.data(), 4 * w) == 0;
+    SDL_RenderPresent(renderer_);
+    RASTER_REQUIRE(read, InvalidState, std::string("SDL cannot read the window back: ") + SDL_GetError());
+    for (size_t i = 3; i < window.size(); i += 4) window[i] = 255;  // a window has no transparency
+    const std::string window_path = path.substr(0, path.size() - 4) + "-window.png";
+    writePngRgba8(window_path, uint32_t(w), uint32_t(h), window);
+    say("window " + window_path);
+}
+
+void Viewer::reportPixel(int windowX, int windowY) {
+    int window_width = 0, window_height = 0;
+    SDL_GetWindowSize(window_, &window_width, &window_height);
+    const uint32_t w = shown_->color.width(), h = shown_->color.height();
+    // The framebuffer fills the window: scale window pixels to framebuffer pixels.
+    const int64_t x = window_width > 0 ? int64_t(windowX) * w / window_width : windowX;
+    const int64_t y = window_height > 0 ? int64_t(windowY) * h / window_height : windowY;
+    if (x < 0 || y < 0 || x >= int64_t(w) || y >= int64_t(h)) {
+        say("click " + std::to_string(windowX) + "," + std::to_string(windowY) + ": outside the framebuffer");
+        return;
+    }
+    const std::vector<uint8_t> rgba = shown_->color.toRgba8();
+    const uint8_t* p = &rgba[4 * (size_t(y) * w + size_t(x))];
+    char text[160];
+    std::snprintf(text, sizeof text, "pixel %lld,%lld: rgba %d %d %d %d, depth %.7g", (long long)x,
+                  (long long)y, p[0], p[1], p[2], p[3], double(shown_->depth.load(uint32_t(x), uint32_t(y))));
+    say(text);
+}
+
+}  // namespace raster::tools

@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# raster view in a real window: SDL's x11 driver on a virtual X server (xvfb-run). Steps through the
+# particles scene, clicks a pixel and takes screenshots, then runs the same script headless; the
+# screenshots and the click reports must be the same, byte for byte. Exit 77 (CTest: skipped) only
+# when xvfb-run is missing.
+#   bash tests/viewer_xvfb_test.sh build/bin/raster
+set -euo pipefail
+raster=$1
+if ! command -v xvfb-run >/dev/null; then
+  echo "xvfb-run is missing (Debian: xvfb, xauth): skipped"
+  exit 77
+fi
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+fail() {
+  echo "FAIL: $*" >&2
+  exit 1
+}
+
+script="N ] ] ] [ P N 0 N ] click:160,90 S 0 click:160,90 click:20,20 S Esc"
+# The window run must not inherit a headless driver from the caller's environment.
+SDL_VIDEODRIVER=x11 timeout 50 xvfb-run -a -s "-screen 0 640x480x24" \
+  "$raster" view particles --size 320x180 --script "$script" --screenshot-dir "$dir/window" \
+  --screenshot-window >"$dir/window.txt"
+env -u SDL_VIDEODRIVER timeout 50 "$raster" view particles --headless --size 320x180 --script "$script" \
+  --screenshot-dir "$dir/headless" >"$dir/headless.txt"
+cat "$dir/window.txt"
+
+grep -q "video driver x11" "$dir/window.txt" || fail "the window run did not use SDL's x11 driver"
+grep -q "video driver offscreen" "$dir/headless.txt" || fail "the headless run did not use SDL's offscreen driver"
+diff <(grep '^pixel' "$dir/window.txt") <(grep '^pixel' "$dir/headless.txt") || fail "click reports differ"
+[[ $(grep -c '^pixel' "$dir/window.txt") == 3 ]] || fail "expected three click reports"
+for shot in particles-0001.png particles-0002.png; do
+  [[ -s $dir/window/$shot ]] || fail "the window run wrote no $shot"
+  cmp "$dir/window/$shot" "$dir/headless/$shot" || fail "$shot differs between the window and headless"
+done
+cmp -s "$dir/window/particles-0001.png" "$dir/window/particles-0002.png" &&
+  fail "a stepped frame and the whole frame should differ"
+# The window itself was read back: a PNG of the window's size (IHDR: width, height at bytes 16..23).
+size=$(od -An -tx1 -j16 -N8 "$dir/window/particles-0001-window.png" | tr -d ' \n')
+[[ $size == 00000140000000b4 ]] || fail "window capture is not 320x180 (IHDR $size)"
+echo "viewer under Xvfb: OK"
