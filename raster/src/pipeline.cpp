@@ -65,6 +65,7 @@ Context::DrawPlan Context::plan(int pixel_shader_targets, bool, PrimitiveKind) c
         clip.x1 = std::min(clip.x1, rasterizer_.scissorRight - 1);
         clip.y1 = std::min(clip.y1, rasterizer_.scissorBottom - 1);
     }
+    p.width = width, p.height = height;
     p.clip = clip;
     p.grid = TileGrid(clip);
     p.planes.guardX = 1.0f + 2.0f * kGuardBandPixels / v.width;

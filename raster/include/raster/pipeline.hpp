@@ -46,10 +46,12 @@
 #include "raster/stages/pixel_shader.hpp"
 #include "raster/stages/rasterizer.hpp"
 #include "raster/stages/setup.hpp"
+#include "raster/stages/trace_recorder.hpp"
 #include "raster/stages/vertex_shader.hpp"
 #include "raster/states.hpp"
 #include "raster/statistics.hpp"
 #include "raster/thread_pool.hpp"
+#include "raster/trace.hpp"
 
 namespace raster {
 
@@ -75,6 +77,12 @@ struct Chunk {
     PipelineStatistics stats;
     int gsOverflow = 0;
     uint32_t gsOverflowPrimitive = 0;
+    // Trace records (only while a trace with geometry is set), at most traceCap of each.
+    bool tracing = false;
+    uint32_t traceCap = 0;
+    std::vector<TraceGsVertex> traceGs;
+    std::vector<TracePrimitive> tracePrimitives;
+    uint64_t traceGsTotal = 0, tracePrimitivesTotal = 0;
 
     void reset(uint32_t tiles) {
         vertices.clear(), triangles.clear(), lines.clear(), points.clear(), rects.clear();
@@ -82,6 +90,20 @@ struct Chunk {
         for (auto& b : bins) b.clear();
         stats = {};
         gsOverflow = 0;
+        tracing = false;
+        traceGs.clear(), tracePrimitives.clear();
+        traceGsTotal = tracePrimitivesTotal = 0;
+    }
+    // Notes what happened to a primitive (s: its screen vertices, n of them; none if rejected early).
+    void trace(uint32_t primitive, PrimitiveKind kind, PrimitiveFate fate, bool clipped, const ScreenVertex* s,
+               int n, const float* w = nullptr) {
+        if (!tracing) return;
+        if (tracePrimitivesTotal++ >= traceCap) return;
+        TracePrimitive t{primitive, kind, fate, clipped, uint8_t(n), {}};
+        for (int i = 0; i < n; ++i)
+            t.screen[i] = glm::vec4(float(s[i].x) / kSubpixelOne, float(s[i].y) / kSubpixelOne, s[i].z,
+                                    w ? w[i] : (s[i].invW != 0.0f ? 1.0f / s[i].invW : 0.0f));
+        tracePrimitives.push_back(t);
     }
 };
 
@@ -175,7 +197,12 @@ public:
     // Draws since resetFrameStatistics (run or skipped).
     uint32_t drawCount() const { return draw_count_; }
 
-    // One entry per draw since resetFrameStatistics, in draw order.
+    // ---- Trace (see trace.hpp): draws record into `trace` until setTrace(nullptr). The trace
+    // must outlive its use; it is not cleared here (Trace::clear starts a new frame's records).
+    void setTrace(Trace* trace) { trace_ = trace; }
+    Trace* trace() const { return trace_; }
+
+    // One entry per draw since resetFrameStatistics (skipped and empty draws too), in draw order.
     const std::vector<PipelineStatistics>& drawStatisticsLog() const { return draw_log_; }
     void resetFrameStatistics() {
         frame_stats_ = {};
@@ -195,6 +222,7 @@ private:
         ViewportTransform viewport;
         std::array<RenderTarget*, kMaxRenderTargets> targets{};
         int targetCount = 0;
+        uint32_t width = 0, height = 0;  // of the bound targets
     };
     DrawPlan plan(int pixel_shader_targets, bool has_gs, PrimitiveKind gs_input) const;
 
@@ -212,9 +240,12 @@ private:
     static void clipAndSetup(PrimitiveKind kind, const V* const* v, uint32_t primitive_id, const DrawPlan& plan,
                              const RasterizerState& rs, detail::Chunk<V>& chunk);
 
-    template <class PS, class V, class Real, class Depth, class Color>
+    template <class PS, class V, class Real, class Tracer, class Depth, class Color>
     void renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, uint32_t chunk_count, const DrawPlan& plan,
-                     const Depth& depth, const Color& color, PipelineStatistics& stats);
+                     const Depth& depth, const Color& color, PipelineStatistics& stats, const Tracer& tracer);
+    // Starts the trace's record of a draw.
+    template <class VS, class GS, class PS>
+    TraceDraw& beginTraceDraw(uint32_t draw_index, const DrawPlan& plan);
 
     ContextOptions options_;
     ThreadPool pool_;
@@ -234,6 +265,7 @@ private:
     StepLimit step_limit_;
     uint32_t draw_count_ = 0;
     std::unordered_map<std::type_index, std::shared_ptr<void>> scratch_;
+    Trace* trace_ = nullptr;
 };
 
 }  // namespace raster

@@ -40,11 +40,23 @@ void Context::execute(const VS& vs, const GS& gs, const PS& ps, const DrawCall& 
                            "-vertex primitives but the topology makes " + std::to_string(int(assembled.kind)) +
                            "-vertex ones");
     }
+    if (call.instanceCount != 0 && !assembled.fetch.empty())
+        checkVertexBuffers(program, vertex_buffers_, assembled.maxFetch, call.instanceCount - 1, call.startInstance);
     draw_stats_ = {};
     const uint32_t draw_index = draw_count_++;
-    if (draw_index >= step_limit_.draws) return;
-    if (call.instanceCount == 0 || assembled.fetch.empty()) return;
-    checkVertexBuffers(program, vertex_buffers_, assembled.maxFetch, call.instanceCount - 1, call.startInstance);
+    TraceDraw* trace_draw = trace_ ? &beginTraceDraw<VS, GS, PS>(draw_index, p) : nullptr;
+    const bool trace_geometry = trace_draw && trace_->options().geometry;
+    auto finish = [&](const PipelineStatistics& s) {
+        draw_stats_ = s;
+        frame_stats_ += s;
+        if (draw_log_.size() < kMaxLoggedDraws) draw_log_.push_back(s);
+        if (trace_draw) trace_draw->stats = s;
+    };
+    if (draw_index >= step_limit_.draws) {
+        if (trace_draw) trace_draw->skipped = true;
+        return finish({});
+    }
+    if (call.instanceCount == 0 || assembled.fetch.empty()) return finish({});
     PipelineStatistics stats;
     stats.iaVertices = assembled.indicesRead * call.instanceCount;
     stats.iaPrimitives = uint64_t(assembled.primitiveCount()) * call.instanceCount;
@@ -53,6 +65,9 @@ void Context::execute(const VS& vs, const GS& gs, const PS& ps, const DrawCall& 
     // ---- VS ----
     auto& vs_out = scratch<std::vector<VsOut>>();
     runVertexShader(vs, program, vertex_buffers_, assembled, call, pool_, vs_out);
+    if (trace_geometry)
+        detail::traceVertices<VsIn>(*trace_draw, trace_->options().maxGeometryRecords, program, vertex_buffers_,
+                                    assembled, call, vs_out);
 
     // ---- GS → clip → setup → bin, in parallel over chunks of primitives ----
     const uint32_t per_instance = uint32_t(assembled.fetch.size());
@@ -70,6 +85,8 @@ void Context::execute(const VS& vs, const GS& gs, const PS& ps, const DrawCall& 
     pool_.parallelFor(chunk_count, [&](uint32_t c, unsigned) {
         detail::Chunk<Vertex>& chunk = chunks[c];
         chunk.reset(p.grid.count());
+        chunk.tracing = trace_geometry;
+        chunk.traceCap = trace_geometry ? trace_->options().maxGeometryRecords : 0;
         const uint64_t begin = c * chunk_size, end = std::min(total_prims, begin + chunk_size);
         [[maybe_unused]] std::unique_ptr<Stream> stream;
         if constexpr (kHasGs) stream = std::make_unique<Stream>();
@@ -93,6 +110,14 @@ void Context::execute(const VS& vs, const GS& gs, const PS& ps, const DrawCall& 
                         return rectangles && setupBillboard(quad, uint32_t(prim), p, rasterizer_, chunk);
                     });
                 if (overflow && !chunk.gsOverflow) chunk.gsOverflow = overflow, chunk.gsOverflowPrimitive = uint32_t(prim);
+                if (chunk.tracing) {
+                    for (int i = 0; i < stream->size(); ++i) {
+                        if (chunk.traceGsTotal++ >= chunk.traceCap) continue;
+                        const float* f = asFloats(stream->vertex(i));
+                        chunk.traceGs.push_back(TraceGsVertex{uint32_t(prim), stream->startsStrip(i),
+                                                              std::vector<float>(f, f + kVertexFloats<Vertex>)});
+                    }
+                }
             } else {
                 clipAndSetup(assembled.kind, in, uint32_t(prim), p, rasterizer_, chunk);
             }
@@ -106,6 +131,15 @@ void Context::execute(const VS& vs, const GS& gs, const PS& ps, const DrawCall& 
                            std::to_string(Stream::kMaxVertices) + " for primitive " +
                            std::to_string(chunk.gsOverflowPrimitive) + "; the draw was not rasterised");
         stats += chunk.stats;
+        if (trace_geometry) {
+            const uint32_t cap = trace_->options().maxGeometryRecords;
+            for (auto& g : chunk.traceGs)
+                if (trace_draw->gsVertices.size() < cap) trace_draw->gsVertices.push_back(std::move(g));
+            for (const auto& t : chunk.tracePrimitives)
+                if (trace_draw->primitives.size() < cap) trace_draw->primitives.push_back(t);
+            trace_draw->gsVerticesTotal += chunk.traceGsTotal;
+            trace_draw->primitivesTotal += chunk.tracePrimitivesTotal;
+        }
     }
     if constexpr (!kHasGs) stats.gsInvocations = stats.gsPrimitives = 0;
 
@@ -114,24 +148,70 @@ void Context::execute(const VS& vs, const GS& gs, const PS& ps, const DrawCall& 
         const DepthPolicy depth = chooseDepthPolicy(depth_stencil_, depth_, options_.reference);
         const ColorPolicy color = chooseColorPolicy(blend_, p.targets.data(), p.targetCount, options_.reference);
         if (isOrderIndependent(blend_, p.targetCount)) ++stats.sortsAvoided;
-        std::visit(
-            [&](const auto& d, const auto& c) {
-                using D = std::decay_t<decltype(d)>;
-                using C = std::decay_t<decltype(c)>;
-                constexpr bool kReferenceColor = std::is_same_v<C, ColorGeneric<double>>;
-                constexpr bool kReferenceDepth = std::is_same_v<D, DepthOff> || std::is_same_v<D, DepthDynamic>;
-                if constexpr (kReferenceColor && !kReferenceDepth) {
-                    RASTER_CHECK(!"the reference pipeline uses only the dynamic depth policy");
-                } else {
-                    renderTiles<PS, Vertex, std::conditional_t<kReferenceColor, double, float>>(ps, chunks, chunk_count,
-                                                                                                p, d, c, stats);
-                }
-            },
-            depth, color);
+        if (!trace_draw) {
+            std::visit(
+                [&](const auto& d, const auto& c) {
+                    using D = std::decay_t<decltype(d)>;
+                    using C = std::decay_t<decltype(c)>;
+                    constexpr bool kReferenceColor = std::is_same_v<C, ColorGeneric<double>>;
+                    constexpr bool kReferenceDepth = std::is_same_v<D, DepthOff> || std::is_same_v<D, DepthDynamic>;
+                    if constexpr (kReferenceColor && !kReferenceDepth) {
+                        RASTER_CHECK(!"the reference pipeline uses only the dynamic depth policy");
+                    } else {
+                        renderTiles<PS, Vertex, std::conditional_t<kReferenceColor, double, float>>(
+                            ps, chunks, chunk_count, p, d, c, stats, detail::NoTracer{});
+                    }
+                },
+                depth, color);
+        } else {
+            // Traced: the generic depth and colour policies (the same bits as the specialised ones),
+            // fragment by fragment, so that every fragment passes through the recorder.
+            detail::FragmentTracer tracer;
+            tracer.filter = trace_->options().pixels;
+            tracer.draw = draw_index;
+            tracer.color = p.targetCount > 0 ? p.targets[0] : nullptr;
+            tracer.depth = depth_;
+            tracer.overdraw = trace_->overdrawData();
+            tracer.nonFinite = trace_->nonFiniteData();
+            tracer.width = p.width;
+            auto traced_depth = detail::tracingDepthPolicy(depth);
+            auto traced_color = detail::tracingColorPolicy(color, blend_, p.targets.data(), p.targetCount);
+            std::visit(
+                [&](const auto& d, const auto& c) {
+                    using C = std::decay_t<decltype(c)>;
+                    constexpr bool kReferenceColor = std::is_same_v<C, ColorGeneric<double>>;
+                    renderTiles<PS, Vertex, std::conditional_t<kReferenceColor, double, float>>(
+                        ps, chunks, chunk_count, p, d, c, stats, tracer);
+                },
+                traced_depth, traced_color);
+        }
     }
-    draw_stats_ = stats;
-    frame_stats_ += stats;
-    if (draw_log_.size() < kMaxLoggedDraws) draw_log_.push_back(stats);
+    finish(stats);
+}
+
+template <class VS, class GS, class PS>
+TraceDraw& Context::beginTraceDraw(uint32_t draw_index, const DrawPlan& plan) {
+    using VsIn = VertexShaderInput<VS>;
+    using VsOut = VertexShaderOutput<VS>;
+    TraceDraw& d = trace_->beginDraw(plan.width, plan.height);
+    d.draw = draw_index;
+    d.vertexShader = typeName<VS>();
+    d.pixelShader = typeName<PS>();
+    d.topology = topology_;
+    d.blend = blend_;
+    d.depthStencil = depth_stencil_;
+    for (const ShaderInputField& f : VsIn::inputSignature())
+        d.inputFields.push_back({std::string(f.semanticName) + (f.semanticIndex ? std::to_string(f.semanticIndex) : ""),
+                                 f.offset / uint32_t(sizeof(float)), f.components});
+    d.vsFloats = kVertexFloats<VsOut>;
+    d.vsPosition = uint32_t(offsetof(VsOut, position) / sizeof(float));
+    if constexpr (!std::is_same_v<GS, NoGeometryShader>) {
+        using GsOut = GeometryShaderOutput<GS>;
+        d.geometryShader = typeName<GS>();
+        d.gsFloats = kVertexFloats<GsOut>;
+        d.gsPosition = uint32_t(offsetof(GsOut, position) / sizeof(float));
+    }
+    return d;
 }
 
 template <class V>
@@ -151,6 +231,12 @@ bool Context::setupBillboard(const V* const* quad, uint32_t primitive_id, const 
     st.cInvocations += 2;
     st.cPrimitives += 2;
     ++st.rectanglesRecognized;
+    if (chunk.tracing) {
+        const float w[4] = {v[0]->position.w, v[1]->position.w, v[2]->position.w, v[3]->position.w};
+        chunk.trace(primitive_id, PrimitiveKind::Triangle,
+                    culled ? PrimitiveFate::Culled : r.box.empty() ? PrimitiveFate::NoPixels : PrimitiveFate::Rectangle,
+                    false, s, 4, w);
+    }
     if (culled) {
         st.primitivesCulled += 2;
         return true;
@@ -181,6 +267,7 @@ void Context::clipAndSetup(PrimitiveKind kind, const V* const* v, uint32_t primi
     for (int i = 0; i < n; ++i) {
         if (!isFinite(v[i]->position)) {
             ++st.primitivesNonFinite;
+            chunk.trace(primitive_id, kind, PrimitiveFate::NonFinite, false, nullptr, 0);
             return;
         }
         const uint32_t code = outcode(v[i]->position, plan.planes);
@@ -189,11 +276,13 @@ void Context::clipAndSetup(PrimitiveKind kind, const V* const* v, uint32_t primi
     }
     if (all != 0) {
         ++st.primitivesOutside;
+        chunk.trace(primitive_id, kind, PrimitiveFate::Outside, false, nullptr, 0);
         return;
     }
     const uint32_t cut = any & kClipPlanesMask;
     if (kind == PrimitiveKind::Point && cut != 0) {
         ++st.primitivesOutside;
+        chunk.trace(primitive_id, kind, PrimitiveFate::Outside, false, nullptr, 0);
         return;
     }
 
@@ -201,8 +290,10 @@ void Context::clipAndSetup(PrimitiveKind kind, const V* const* v, uint32_t primi
         LineSetup l;
         if (!raster::setupLine(s, idx, primitive_id, plan.clip, l)) {
             ++st.primitivesNoPixels;
+            chunk.trace(primitive_id, PrimitiveKind::Line, PrimitiveFate::NoPixels, cut != 0, s, 2);
             return;
         }
+        chunk.trace(primitive_id, PrimitiveKind::Line, PrimitiveFate::Rasterized, cut != 0, s, 2);
         const uint32_t index = uint32_t(chunk.lines.size());
         chunk.lines.push_back(l);
         st.tilesBinned += binBox(l.box, plan.grid, [&](uint32_t tile) {
@@ -223,7 +314,11 @@ void Context::clipAndSetup(PrimitiveKind kind, const V* const* v, uint32_t primi
             TriangleSetup t;  // for culling only
             const SetupResult r = setupTriangle(s, idx, primitive_id, rs, plan.clip, t);
             if (r == SetupResult::Culled) ++st.primitivesCulled;
-            if (r == SetupResult::Culled || r == SetupResult::Degenerate) return;
+            if (r == SetupResult::Culled || r == SetupResult::Degenerate) {
+                chunk.trace(primitive_id, kind, r == SetupResult::Culled ? PrimitiveFate::Culled : PrimitiveFate::Degenerate,
+                            cut != 0, s, 3);
+                return;
+            }
             for (int e = 0; e < 3; ++e) {
                 const int e1 = (e + 1) % 3;
                 setupLine({s[e], s[e1]}, {idx[e], idx[e1]});
@@ -233,7 +328,13 @@ void Context::clipAndSetup(PrimitiveKind kind, const V* const* v, uint32_t primi
         switch (kind) {
             case PrimitiveKind::Triangle: {
                 TriangleSetup t;
-                switch (setupTriangle(s, idx, primitive_id, rs, plan.clip, t)) {
+                const SetupResult result = setupTriangle(s, idx, primitive_id, rs, plan.clip, t);
+                if (chunk.tracing) {
+                    constexpr PrimitiveFate kFates[] = {PrimitiveFate::Rasterized, PrimitiveFate::Culled,
+                                                        PrimitiveFate::Degenerate, PrimitiveFate::NoPixels};
+                    chunk.trace(primitive_id, kind, kFates[int(result)], cut != 0, s, 3);
+                }
+                switch (result) {
                     case SetupResult::Culled: ++st.primitivesCulled; break;
                     case SetupResult::Degenerate: ++st.primitivesDegenerate; break;
                     case SetupResult::NoPixels: ++st.primitivesNoPixels; break;
@@ -253,7 +354,10 @@ void Context::clipAndSetup(PrimitiveKind kind, const V* const* v, uint32_t primi
             case PrimitiveKind::Line: setupLine({s[0], s[1]}, {idx[0], idx[1]}); return;
             case PrimitiveKind::Point: {
                 PointSetup pt;
-                if (!setupPoint(s[0], idx[0], primitive_id, plan.clip, pt)) {
+                const bool has_pixels = setupPoint(s[0], idx[0], primitive_id, plan.clip, pt);
+                chunk.trace(primitive_id, kind, has_pixels ? PrimitiveFate::Rasterized : PrimitiveFate::NoPixels,
+                            cut != 0, s, 1);
+                if (!has_pixels) {
                     ++st.primitivesNoPixels;
                     chunk.vertices.resize(base);
                     return;
@@ -293,51 +397,71 @@ struct ReferenceModeGuard {
 
 }  // namespace detail
 
-template <class PS, class V, class Real, class Depth, class Color>
+template <class PS, class V, class Real, class Tracer, class Depth, class Color>
 void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, uint32_t chunk_count,
-                          const DrawPlan& plan, const Depth& depth, const Color& color, PipelineStatistics& stats) {
+                          const DrawPlan& plan, const Depth& depth, const Color& color, PipelineStatistics& stats,
+                          const Tracer& tracer_prototype) {
     using Out = PixelShaderOutput<PS>;
     // The reference pipeline tests depth after the shader, in D3D's literal order; the fast one
     // before it (the result is the same: shaders here cannot write depth).
     constexpr bool kEarlyDepth = std::is_same_v<Real, float>;
     constexpr bool kWide = [] {
         if constexpr (WidePixelShader<PS>)
-            return std::is_same_v<Real, float> && std::is_same_v<Out, glm::vec4>;
+            return std::is_same_v<Real, float> && std::is_same_v<Out, glm::vec4> && !Tracer::kEnabled;
         else
             return false;
     }();
     const float min_depth = plan.viewport.minDepth, max_depth = plan.viewport.maxDepth;
     std::vector<PipelineStatistics> per_thread(pool_.size());
+    [[maybe_unused]] std::vector<std::vector<TraceFragment>> traced_tiles(Tracer::kEnabled ? plan.grid.count() : 0);
     pool_.parallelFor(plan.grid.count(), [&](uint32_t tile, unsigned thread) {
         PipelineStatistics& st = per_thread[thread];
         const PixelRect rect = plan.grid.tileRect(tile);
         detail::ReferenceModeGuard reference(std::is_same_v<Real, double>);
         QuadShader<PS> shader(ps);
+        [[maybe_unused]] Tracer tracer = tracer_prototype;
 
         // The output merger for one shaded fragment.
-        auto merge = [&](int32_t x, int32_t y, Real z, const Out& out) {
+        auto mergeFragment = [&](int32_t x, int32_t y, Real z, const Out& out) {
             if (isDiscarded(out)) {
                 ++st.fragmentsDiscarded;
-                return;
+                return FragmentFate::Discarded;
             }
             if constexpr (!kEarlyDepth && Depth::kEnabled) {
                 if (!depth.test(x, y, float(z))) {
                     ++st.fragmentsLateDepthKilled;
-                    return;
+                    return FragmentFate::LateDepthFailed;
                 }
             }
             depth.write(x, y, float(z));
             const auto& colors = colorsOf(out);
             if (color.isNoOp(colors)) {
                 ++st.fragmentsBlendNoOp;
-                return;
+                return FragmentFate::BlendNoOp;
             }
             color.write(x, y, colors);
+            return FragmentFate::Written;
+        };
+        auto merge = [&](int32_t x, int32_t y, Real z, const Out& out) {
+            if constexpr (Tracer::kEnabled) {
+                glm::vec4 target0(0.0f);
+                if (!isDiscarded(out)) {
+                    const auto& colors = colorsOf(out);
+                    target0 = detail::ColorTraits<std::decay_t<decltype(colors)>>::color(colors, 0);
+                }
+                const size_t record = tracer.open(x, y, float(z), !isDiscarded(out), target0);
+                tracer.close(record, mergeFragment(x, y, z, out));
+            } else {
+                mergeFragment(x, y, z, out);
+            }
         };
         auto earlyDepthPasses = [&](int32_t x, int32_t y, Real z) {
+            if constexpr (Tracer::kEnabled) tracer.covered(x, y);
             if constexpr (kEarlyDepth && Depth::kEnabled) {
                 if (!depth.test(x, y, float(z))) {
                     ++st.fragmentsEarlyDepthKilled;
+                    if constexpr (Tracer::kEnabled)
+                        tracer.close(tracer.open(x, y, float(z), false, glm::vec4(0.0f)), FragmentFate::EarlyDepthFailed);
                     return false;
                 }
             }
@@ -497,6 +621,7 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                 switch (binKind(entry)) {
                     case BinKind::Triangle: {
                         const TriangleSetup& t = chunk.triangles[index];
+                        if constexpr (Tracer::kEnabled) tracer.primitive = t.primitiveId;
                         const V* const verts[3] = {&chunk.vertices[t.vertex[0]], &chunk.vertices[t.vertex[1]],
                                                    &chunk.vertices[t.vertex[2]]};
                         const TriangleInterpolant<Real> ti(t);
@@ -528,6 +653,7 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                     }
                     case BinKind::Rectangle: {
                         const RectSetup& r = chunk.rects[index];
+                        if constexpr (Tracer::kEnabled) tracer.primitive = r.primitiveId;
                         const float* base = asFloats(chunk.vertices[r.vertex]);
                         const float* step_x = asFloats(chunk.vertices[r.vertex + 1]);
                         const float* step_y = asFloats(chunk.vertices[r.vertex + 2]);
@@ -551,6 +677,7 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                     }
                     case BinKind::Line: {
                         const LineSetup& l = chunk.lines[index];
+                        if constexpr (Tracer::kEnabled) tracer.primitive = l.primitiveId;
                         const V* const verts[2] = {&chunk.vertices[l.vertex[0]], &chunk.vertices[l.vertex[1]]};
                         rasterizeLine(l, rect, [&](int32_t x, int32_t y, double t) {
                             V in;
@@ -564,6 +691,7 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                     }
                     case BinKind::Point: {
                         const PointSetup& pt = chunk.points[index];
+                        if constexpr (Tracer::kEnabled) tracer.primitive = pt.primitiveId;
                         if (pt.px < rect.x0 || pt.px > rect.x1 || pt.py < rect.y0 || pt.py > rect.y1) break;
                         V in = chunk.vertices[pt.vertex];
                         const Real z = std::clamp(Real(pt.z), Real(min_depth), Real(max_depth));
@@ -577,8 +705,11 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                 }
             }
         }
+        if constexpr (Tracer::kEnabled) traced_tiles[tile] = std::move(tracer.fragments);
     });
     for (const PipelineStatistics& s : per_thread) stats += s;
+    if constexpr (Tracer::kEnabled)
+        for (const auto& fragments : traced_tiles) trace_->addFragments(fragments);
 }
 
 }  // namespace raster

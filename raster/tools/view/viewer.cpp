@@ -284,8 +284,7 @@ void Viewer::show(std::shared_ptr<RenderedFrame> frame) {
     if (whole && !cursor_.hasShape()) {
         std::vector<uint64_t> shape;
         for (const PipelineStatistics& s : frame->drawLog) shape.push_back(s.iaPrimitives);
-        // The log leaves out draws that run nothing (no instances or no vertices), which would shift
-        // the counts onto the wrong draws; the lecture's scenes have none.
+        // One log entry per draw, skipped and empty ones too: entry d is draw d.
         shape.resize(frame->drawCount, 0);
         cursor_.setShape(std::move(shape));
     }

@@ -67,6 +67,8 @@ template <ComparisonFunc F, bool Write>
 struct DepthFixed {
     static constexpr bool kEnabled = true;
     static constexpr bool kWide = true;
+    static constexpr ComparisonFunc kFunc = F;
+    static constexpr bool kWrite = Write;
     float* depth;
     uint32_t width;
     uint32_t testWide(int32_t x, int32_t y, Float8 z) const {
@@ -162,9 +164,16 @@ struct ColorGeneric {
     RenderTarget* const* targets;
     int count;
     const BlendState* blend;
+    // One RGBA8 target blended additively (SrcAlpha, One): a fragment whose saturated alpha is 0
+    // cannot change it, as BlendAdditiveRgba8::isNoOp says (set for traced draws, so that the
+    // trace and the statistics show the skip the fast path makes).
+    bool additiveUnorm = false;
     template <class Colors>
-    bool isNoOp(const Colors&) const {
-        return false;
+    bool isNoOp(const Colors& c) const {
+        if constexpr (std::is_same_v<Real, float>)
+            return additiveUnorm && BlendAdditiveRgba8::isNoOp(at(c, 0));
+        else
+            return false;
     }
     template <class Colors>
     void write(int32_t x, int32_t y, const Colors& c) const {
