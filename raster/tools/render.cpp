@@ -1,6 +1,8 @@
-// raster render [scene...] [--out-dir D] [--width W] [--height H] [--reference]: renders the
-// lecture's scenes (all of them by default) to D/<scene>.png.
+// raster render [scene...] [--out-dir D] [--width W] [--height H] [--reference] [--view]: renders
+// the lecture's scenes (all of them by default) to D/<scene>.png; with --view it then opens the
+// viewer on the first of them where a display exists (DISPLAY or WAYLAND_DISPLAY set).
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -16,15 +18,17 @@ int render(int argc, char** argv) {
     std::vector<std::string> names;
     std::string out_dir = "out";
     SceneOptions options;
-    bool reference = false;
+    bool reference = false, view_after = false;
     while (!args.done()) {
         const std::string_view a = args.take();
         if (a == "--out-dir") out_dir = args.value(a);
         else if (a == "--width") options.width = parseUint(a, args.value(a), 1, RenderTarget::kMaxSize);
         else if (a == "--height") options.height = parseUint(a, args.value(a), 1, RenderTarget::kMaxSize);
         else if (a == "--reference") reference = true;
+        else if (a == "--view") view_after = true;
         else if (a == "--help" || a == "-h") {
-            std::puts("usage: raster render [particles|fog ...] [--out-dir D] [--width W] [--height H] [--reference]");
+            std::puts("usage: raster render [particles|fog ...] [--out-dir D] [--width W] [--height H] [--reference]\n"
+                      "                     [--view]  (then opens raster view on the first scene if a display exists)");
             return 0;
         } else if (a.starts_with("--")) {
             throw Error(ErrorCode::InvalidArgument, "unknown option '" + std::string(a) + "'");
@@ -45,6 +49,18 @@ int render(int argc, char** argv) {
         const std::string path = out_dir + "/" + name + ".png";
         color.savePng(path);
         std::printf("wrote %s (%ux%u)\n", path.c_str(), options.width, options.height);
+    }
+    if (view_after) {
+        const char* display = std::getenv("DISPLAY");
+        const char* wayland = std::getenv("WAYLAND_DISPLAY");
+        if ((!display || !*display) && (!wayland || !*wayland)) {
+            std::puts("no display (DISPLAY and WAYLAND_DISPLAY unset): not opening the viewer");
+            return 0;
+        }
+        std::fflush(stdout);
+        std::string scene = names.front();
+        char* view_argv[] = {scene.data()};
+        return view(1, view_argv);
     }
     return 0;
 }
