@@ -127,7 +127,10 @@ struct RasterizerState {
     CullMode cullMode = CullMode::Back;
     // false: a triangle whose vertices appear clockwise on screen (y down) is front-facing.
     bool frontCounterClockwise = false;
-    bool depthClipEnable = true;  // clip against 0 <= z <= w
+    // true: clip against 0 <= z <= w. false: the far plane is not clipped and depth is clamped to
+    // the viewport's [minDepth, maxDepth]; unlike D3D11, the near plane z >= 0 is still clipped
+    // (it also keeps w > 0 for the perspective divide). See docs/DESIGN.md.
+    bool depthClipEnable = true;
     // Scissor rectangle in pixels, used when scissorEnable: pixels with left <= x < right and
     // top <= y < bottom survive. right == left (or bottom == top) is an empty rectangle; right < left
     // (or bottom < top) is refused by validate().
