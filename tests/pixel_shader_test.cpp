@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <bit>
+#include <random>
 #include <cmath>
 #include <optional>
 #include <vector>
@@ -481,6 +483,40 @@ TEST(PixelShader, ZeroAlphaAdditiveFragmentsAreBlendNoOps) {
     EXPECT_EQ(f.ctx.drawStatistics().psInvocations, 8u * 16u);
     EXPECT_EQ(f.color.rgba8()[0], 115);
     EXPECT_EQ(f.color.rgba8()[4 * 8], before.rgba8()[4 * 8]);
+}
+
+
+// The eight-wide depth and barycentrics convert edge functions with a bit trick; they must give
+// the scalar code's bits for any edge value up to the documented bound, negative ones included.
+TEST(PixelShaderWide, DepthAndBarycentricsAreTheScalarBits) {
+    std::mt19937_64 rng(7);
+    const int64_t kBound = int64_t(1) << 50;
+    std::uniform_int_distribution<int64_t> any(-kBound, kBound);
+    std::uniform_int_distribution<int64_t> small(-1000, 1000);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    for (int trial = 0; trial < 2000; ++trial) {
+        TriangleSetup t{};
+        t.area2 = 1 + (trial % 3 == 0 ? small(rng) * small(rng) * 1000 + 2000000 : (any(rng) >> 3) | 1);
+        if (t.area2 < 0) t.area2 = -t.area2;
+        t.invArea2 = 1.0 / double(t.area2);
+        for (int k = 0; k < 3; ++k) t.z[k] = unit(rng), t.invW[k] = 0.5f + unit(rng);
+        int64_t e[3][8];
+        for (auto& edge : e)
+            for (int64_t& v : edge) v = trial % 2 ? any(rng) : small(rng);
+        const float lo = trial % 5 == 0 ? 0.25f : 0.0f, hi = trial % 7 == 0 ? 0.75f : 1.0f;
+        const Float8 z = interpolateDepthWide(t, e, lo, hi);
+        const TriangleInterpolant<float> ti(t);
+        Float8 b[3];
+        barycentricsWide(ti, e, b);
+        for (int l = 0; l < 8; ++l) {
+            const float expect = interpolateDepth<float>(t, e[0][l], e[1][l], e[2][l], lo, hi);
+            ASSERT_EQ(std::bit_cast<uint32_t>(z[l]), std::bit_cast<uint32_t>(expect)) << "trial " << trial << " lane " << l;
+            const Barycentrics<float> scalar = barycentrics(ti, e[0][l], e[1][l], e[2][l]);
+            for (int k = 0; k < 3; ++k)
+                ASSERT_EQ(std::bit_cast<uint32_t>(b[k][l]), std::bit_cast<uint32_t>(scalar.b[k]))
+                    << "trial " << trial << " lane " << l << " weight " << k;
+        }
+    }
 }
 
 }  // namespace

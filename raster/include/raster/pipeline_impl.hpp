@@ -564,9 +564,7 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
             if constexpr (kWide && Depth::kWide && Color::kWide) {
                 rasterizeTriangleBlocks(t, steps, rect, [&](int32_t x, int32_t y, uint32_t mask, const int64_t (&e)[3][8]) {
                     if (x >= rect.x0 && x + 3 <= rect.x1 && y >= rect.y0 && y + 1 <= rect.y1) {
-                        Float8 z;
-                        for (int l = 0; l < 8; ++l)
-                            z.set(l, float(interpolateDepth<Real>(t, e[0][l], e[1][l], e[2][l], min_depth, max_depth)));
+                        const Float8 z = interpolateDepthWide(t, e, min_depth, max_depth);
                         uint32_t live = mask;
                         if constexpr (Depth::kEnabled) {
                             live &= depth.testWide(x, y, z);

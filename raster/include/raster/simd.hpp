@@ -29,6 +29,9 @@ namespace simd {
 using F32x8 = float __attribute__((vector_size(32)));
 using I32x8 = int32_t __attribute__((vector_size(32)));
 using U32x8 = uint32_t __attribute__((vector_size(32)));
+using F32x4 = float __attribute__((vector_size(16)));
+using F64x4 = double __attribute__((vector_size(32)));
+using I64x4 = int64_t __attribute__((vector_size(32)));
 }  // namespace simd
 
 struct Int8;

@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstring>
 #include <optional>
 
 #include "raster/shader.hpp"
@@ -53,6 +54,50 @@ Real interpolateDepth(const TriangleSetup& t, int64_t e0, int64_t e1, int64_t e2
     return Real(float(std::clamp(z, double(min_depth), double(max_depth))));
 }
 
+// Four edge-function values as doubles, exactly: AVX2 has no int64 → double conversion, so the
+// integer is added to the bits of 2^52 + 2^51, where a double's last mantissa bit is worth 1,
+// and that value subtracted again. Exact for |x| < 2^51; edge functions stay below 2^50.2 (16.8
+// coordinates within ±(32768 + kGuardBandPixels) pixels: products of two 2^24.6 differences).
+inline simd::F64x4 edgesToDouble(const int64_t* e) {
+    constexpr int64_t kMagicBits = 0x4338000000000000;  // 2^52 + 2^51
+    constexpr double kMagic = 6755399441055744.0;
+    simd::I64x4 bits;
+    std::memcpy(&bits, e, sizeof bits);
+    bits += kMagicBits;
+    simd::F64x4 d;
+    std::memcpy(&d, &bits, sizeof d);
+    return d - kMagic;
+}
+
+// interpolateDepth for the eight lanes of a 4×2 block: the same double operations, four lanes at
+// a time, so the same bits.
+inline Float8 interpolateDepthWide(const TriangleSetup& t, const int64_t (&e)[3][8], float min_depth,
+                                   float max_depth) {
+    Float8 out;
+    for (int h = 0; h < 2; ++h) {
+        const simd::F64x4 e0 = edgesToDouble(&e[0][4 * h]), e1 = edgesToDouble(&e[1][4 * h]),
+                          e2 = edgesToDouble(&e[2][4 * h]);
+        simd::F64x4 z = (e1 * t.z[0] + e2 * t.z[1] + e0 * t.z[2]) * t.invArea2;
+        const simd::F64x4 lo = simd::F64x4{} + double(min_depth), hi = simd::F64x4{} + double(max_depth);
+        z = z < lo ? lo : z;  // std::clamp's order: below lo → lo, then above hi → hi
+        z = hi < z ? hi : z;
+        const simd::F32x4 f = __builtin_convertvector(z, simd::F32x4);
+        for (int l = 0; l < 4; ++l) out.set(4 * h + l, f[l]);
+    }
+    return out;
+}
+
+// The barycentrics of the eight lanes: float(e) · invArea as barycentrics() computes it (the
+// exact double rounds to the same float as a direct int64 → float conversion).
+inline void barycentricsWide(const TriangleInterpolant<float>& ti, const int64_t (&e)[3][8], Float8 (&b)[3]) {
+    for (int k = 0; k < 3; ++k) {
+        const int edge = (k + 1) % 3;  // b0 from e1, b1 from e2, b2 from e0
+        const simd::F32x4 lo = __builtin_convertvector(edgesToDouble(&e[edge][0]), simd::F32x4);
+        const simd::F32x4 hi = __builtin_convertvector(edgesToDouble(&e[edge][4]), simd::F32x4);
+        b[k] = Float8(simd::F32x8{lo[0], lo[1], lo[2], lo[3], hi[0], hi[1], hi[2], hi[3]}) * Float8(ti.invArea);
+    }
+}
+
 // Fills `out` (the pixel shader's input) for pixel (px, py) with depth z.
 template <class Real, class V>
 void interpolateAttributes(const TriangleInterpolant<Real>& ti, const Barycentrics<Real>& b, const V* const (&v)[3],
@@ -77,11 +122,7 @@ template <class V>
 void interpolateAttributesWide(const TriangleInterpolant<float>& ti, const int64_t (&e)[3][8],
                                const V* const (&v)[3], int32_t x, int32_t y, Float8 z, Wide<V>& out) {
     Float8 b[3];
-    for (int l = 0; l < 8; ++l) {
-        b[0].set(l, float(e[1][l]) * ti.invArea);
-        b[1].set(l, float(e[2][l]) * ti.invArea);
-        b[2].set(l, float(e[0][l]) * ti.invArea);
-    }
+    barycentricsWide(ti, e, b);
     Float8 f0 = b[0] * Float8(ti.invW[0]), f1 = b[1] * Float8(ti.invW[1]), f2 = b[2] * Float8(ti.invW[2]);
     const Float8 w = Float8(1.0f) / (f0 + f1 + f2);
     f0 *= w, f1 *= w, f2 *= w;
