@@ -171,7 +171,8 @@ public:
         ps_fog_.eye = eye;
         ps_sky_.fog = fog;
         ps_sky_.eye = eye;
-        ps_sky_.invViewProj = glm::inverse(view_proj);
+        vs_sky_.eye = eye;
+        vs_sky_.invViewProj = glm::inverse(view_proj);
     }
     std::string_view name() const override { return "fog"; }
 
@@ -186,7 +187,7 @@ public:
         context.setDepthStencilState({true, true, ComparisonFunc::LessEqual});
         context.setInputLayout(&sky_layout_);
         context.setVertexBuffer(0, &sky_);
-        context.draw(shaders::VsSky{}, ps_sky_, 3);
+        context.draw(vs_sky_, ps_sky_, 3);
     }
 
 private:
@@ -195,6 +196,7 @@ private:
     uint32_t vertex_count_ = 0;
     shaders::VsLit vs_lit_;
     shaders::PsFog ps_fog_;
+    shaders::VsSky vs_sky_;
     shaders::PsSky ps_sky_;
 };
 

@@ -129,34 +129,36 @@ struct SkyIn {
 template <class T>
 struct SkyVertexT {
     glm::vec<4, T> position;
-    glm::vec<2, T> ndc;
+    glm::vec<3, T> ray;  // the pixel's view ray, world space, not normalised
 };
 using SkyVertex = SkyVertexT<float>;
 
+// The far-plane corner's homogeneous world point H = invViewProj·(ndc, 1, 1) is linear in ndc,
+// and so is H.xyz − eye·H.w = H.w·(P − eye): the view ray scaled by H.w (one sign over the screen:
+// H.w depends on depth only). It is passed on as an attribute, linear across the screen (w = 1),
+// so the pixel shader needs no unprojection.
 struct VsSky {
-    SkyVertex operator()(const SkyIn& in) const { return {glm::vec4(in.ndc, 1.0f, 1.0f), in.ndc}; }
+    glm::mat4 invViewProj{1.0f};
+    glm::vec3 eye{0.0f};
+    SkyVertex operator()(const SkyIn& in) const {
+        const glm::vec4 h = invViewProj * glm::vec4(in.ndc, 1.0f, 1.0f);
+        const float sign = h.w < 0.0f ? -1.0f : 1.0f;
+        return {glm::vec4(in.ndc, 1.0f, 1.0f), (glm::vec3(h) - eye * h.w) * sign};
+    }
 };
 
+// The background: L0 = 0 seen through the fog to s = ∞ along the pixel's view ray, so only the
+// in-scattered term (q/σ)·(1 − T) remains (the L0·T term is +0 exactly, and is not computed).
 struct PsSky {
     using Input = SkyVertex;
     FogMedium fog;
     glm::vec3 eye{0.0f};
-    glm::mat4 invViewProj{1.0f};
-
     template <class T>
     glm::vec<4, T> operator()(const SkyVertexT<T>& in) const {
-        using V3 = glm::vec<3, T>;
-        // The pixel's view ray: unproject its points on the near (z = 0) and far (z = 1) planes.
-        auto unproject = [&](float z) {
-            glm::vec<4, T> p;
-            for (int r = 0; r < 4; ++r)
-                p[r] = T(invViewProj[0][r]) * in.ndc.x + T(invViewProj[1][r]) * in.ndc.y +
-                       T(invViewProj[2][r] * z + invViewProj[3][r]);
-            return V3(p.x / p.w, p.y / p.w, p.z / p.w);
-        };
-        const V3 a = unproject(0.0f), c = unproject(1.0f);
-        const V3 d = normalize(V3(c.x - a.x, c.y - a.y, c.z - a.z));
-        const V3 L = fog.applyOpticalDepth(V3(T(0.0f), T(0.0f), T(0.0f)), fog.opticalDepthToInfinity(eye.y, d.y));
+        const T dy = in.ray.y / sqrt(in.ray.x * in.ray.x + in.ray.y * in.ray.y + in.ray.z * in.ray.z);
+        const T tau = fog.opticalDepthToInfinity(eye.y, dy);
+        glm::vec<3, T> L;
+        for (int c = 0; c < 3; ++c) L[c] = T(fog.q[c] / fog.sigma[c]) * -expm1(-(T(fog.sigma[c]) * tau));
         return {L.x, L.y, L.z, T(1.0f)};
     }
 };
