@@ -46,8 +46,8 @@ struct Fixture {
     InputLayout layout;
     VertexBuffer vb;
     uint32_t width, height;
-    Fixture(uint32_t w, uint32_t h, Format format = Format::R8G8B8A8_UNORM)
-        : color(w, h, format), depth(w, h), width(w), height(h) {
+    Fixture(uint32_t w, uint32_t h, Format format = Format::R8G8B8A8_UNORM, const ContextOptions& options = {})
+        : ctx(options), color(w, h, format), depth(w, h), width(w), height(h) {
         color.clear(kClear);
         depth.clear(1.0f);
         ctx.setRenderTargets(&color, &depth);
@@ -454,15 +454,43 @@ TEST(PixelShader, OccludedFragmentsNeverRunTheShader) {
     const RenderTarget before = f.color;
     f.drawQuad(PsConstant{glm::vec4(1, 0, 0, 1)}, 4, 4, 12, 12, 0.6f);
     EXPECT_EQ(f.ctx.drawStatistics().psInvocations, 0u);
-    EXPECT_EQ(f.ctx.drawStatistics().fragmentsEarlyDepthKilled, 64u);
+    // The tile's farthest depth (0.3) is nearer than the quad's nearest (0.6): both triangles are
+    // skipped whole in the (only) tile, before any fragment is made.
+    EXPECT_EQ(f.ctx.drawStatistics().tilesOccluded, 2u);
+    EXPECT_EQ(f.ctx.drawStatistics().fragmentsEarlyDepthKilled, 0u);
     EXPECT_EQ(f.ctx.drawStatistics().helperInvocations, 0u);
     EXPECT_TRUE(f.color == before);
+    // At the tile's farthest depth exactly, LessEqual passes: no tile is skipped (a triangle's
+    // nearest depth carries a 2^-20 margin, so equality is never skipped under Less either).
+    f.ctx.setDepthStencilState({true, false, ComparisonFunc::LessEqual});
+    f.drawQuad(PsConstant{glm::vec4(0, 1, 0, 1)}, 4, 4, 12, 12, 0.3f);
+    EXPECT_EQ(f.ctx.drawStatistics().tilesOccluded, 0u);
+    EXPECT_EQ(f.ctx.drawStatistics().psInvocations, 64u);
+    EXPECT_EQ(f.color.load(4, 4), glm::vec4(0, 1, 0, 1));
+    f.ctx.setDepthStencilState({true, true, ComparisonFunc::Less});
     // In front, it runs and is not killed.
     f.drawQuad(PsConstant{glm::vec4(1, 0, 0, 1)}, 4, 4, 12, 12, 0.2f);
     EXPECT_EQ(f.ctx.drawStatistics().psInvocations, 64u);
     EXPECT_EQ(f.ctx.drawStatistics().fragmentsEarlyDepthKilled, 0u);
     EXPECT_EQ(f.color.load(4, 4), glm::vec4(1, 0, 0, 1));
     EXPECT_EQ(f.color.load(3, 4), kWhite);
+}
+
+// Where the tile is only partly in front, the test is made per fragment, and the image is the
+// reference pipeline's (which never skips a tile).
+TEST(PixelShader, PartlyOccludedTilesAreTestedPerFragment) {
+    for (const bool reference : {false, true}) {
+        Fixture f(16, 16, Format::R8G8B8A8_UNORM, ContextOptions{1, reference});
+        f.drawQuad(PsConstant{kWhite}, 0, 0, 8, 16, 0.3f);  // the left half only: the tile's far depth stays 1
+        f.drawQuad(PsConstant{glm::vec4(1, 0, 0, 1)}, 4, 4, 12, 12, 0.6f);
+        EXPECT_EQ(f.ctx.drawStatistics().tilesOccluded, 0u) << reference;
+        EXPECT_EQ(f.ctx.drawStatistics().fragmentsEarlyDepthKilled + f.ctx.drawStatistics().fragmentsLateDepthKilled,
+                  32u)
+            << reference;
+        EXPECT_EQ(f.ctx.drawStatistics().psInvocations, reference ? 64u : 32u);
+        EXPECT_EQ(f.color.load(5, 5), kWhite) << reference;
+        EXPECT_EQ(f.color.load(9, 5), glm::vec4(1, 0, 0, 1)) << reference;
+    }
 }
 
 TEST(PixelShader, ZeroAlphaAdditiveFragmentsAreBlendNoOps) {

@@ -6,6 +6,7 @@ namespace raster {
     X(iaVertices) X(iaPrimitives) X(vsInvocations) X(gsInvocations) X(gsPrimitives) X(cInvocations)      \
     X(cPrimitives) X(psInvocations) X(primitivesNonFinite) X(primitivesOutside) X(primitivesClipped)     \
     X(primitivesCulled) X(primitivesDegenerate) X(primitivesNoPixels) X(rectanglesRecognized) X(tilesBinned) X(tilesRejected)    \
+    X(tilesOccluded)                                                                                    \
     X(fragmentsEarlyDepthKilled) X(fragmentsLateDepthKilled) X(fragmentsDiscarded) X(fragmentsBlendNoOp) \
     X(helperInvocations) X(derivativeReplays) X(sortsAvoided)
 

@@ -421,6 +421,24 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
         QuadShader<PS> shader(ps);
         [[maybe_unused]] Tracer tracer = tracer_prototype;
 
+        // Whole primitives in front of nothing: true when a primitive whose nearest depth is
+        // `nearest` fails the depth test everywhere in this tile (see DepthFixed::kBoundsTile).
+        // Not while tracing, so that a pixel's history shows the fragments the test rejected.
+        [[maybe_unused]] float tile_far = 0.0f;
+        [[maybe_unused]] bool tile_far_known = false;
+        auto occludedInTile = [&]([[maybe_unused]] float nearest) {
+            if constexpr (requires { Depth::kBoundsTile; }) {
+                if constexpr (Depth::kBoundsTile && !Tracer::kEnabled) {
+                    if (!tile_far_known) tile_far = depth.farthest(rect), tile_far_known = true;
+                    if (Depth::occluded(nearest, tile_far)) {
+                        ++st.tilesOccluded;
+                        return true;
+                    }
+                }
+            }
+            return false;
+        };
+
         // The output merger for one shaded fragment.
         auto mergeFragment = [&](int32_t x, int32_t y, Real z, const Out& out) {
             if (isDiscarded(out)) {
@@ -620,6 +638,13 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                     case BinKind::Triangle: {
                         const TriangleSetup& t = chunk.triangles[index];
                         if constexpr (Tracer::kEnabled) tracer.primitive = t.primitiveId;
+                        {
+                            // Interpolated depths stay within the vertices' (to double rounding,
+                            // far below the 2^-20 margin) and are clamped to the viewport's range.
+                            const float lowest = std::min({t.z[0], t.z[1], t.z[2]});
+                            const float nearest = std::clamp(lowest - std::abs(lowest) * 0x1p-20f, min_depth, max_depth);
+                            if (occludedInTile(nearest)) break;
+                        }
                         const V* const verts[3] = {&chunk.vertices[t.vertex[0]], &chunk.vertices[t.vertex[1]],
                                                    &chunk.vertices[t.vertex[2]]};
                         const TriangleInterpolant<Real> ti(t);
@@ -656,6 +681,7 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                         const float* step_x = asFloats(chunk.vertices[r.vertex + 1]);
                         const float* step_y = asFloats(chunk.vertices[r.vertex + 2]);
                         const Real z = std::clamp(Real(r.z), Real(min_depth), Real(max_depth));
+                        if (occludedInTile(float(z))) break;
                         if constexpr (kWide) {
                             shadeRectWide(r, base, step_x, step_y, z);
                             break;

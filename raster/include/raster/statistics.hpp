@@ -29,6 +29,8 @@ struct PipelineStatistics {
     uint64_t rectanglesRecognized = 0;    // two-triangle strips drawn as one screen rectangle (billboards)
     uint64_t tilesBinned = 0;             // (primitive, tile) pairs the binner produced
     uint64_t tilesRejected = 0;           // tiles in a primitive's box rejected by its edge functions
+    uint64_t tilesOccluded = 0;           // (primitive, tile) pairs skipped whole: the primitive's nearest
+                                          // depth fails the test against the tile's farthest stored depth
     uint64_t fragmentsEarlyDepthKilled = 0;  // failed the depth test before the pixel shader ran
     uint64_t fragmentsLateDepthKilled = 0;   // failed the depth test after it (reference mode only)
     uint64_t fragmentsDiscarded = 0;      // the pixel shader returned std::nullopt

@@ -11,11 +11,13 @@
 #include <cstdint>
 #include <cstring>
 #include <type_traits>
+#include <limits>
 #include <variant>
 
 #include "raster/render_target.hpp"
 #include "raster/states.hpp"
 #include "raster/simd.hpp"
+#include "raster/stages/setup.hpp"
 #include "raster/stages/output_merger.hpp"
 
 namespace raster {
@@ -85,6 +87,29 @@ struct DepthFixed {
     bool test(int32_t x, int32_t y, float z) const { return depthPassesT<F>(z, depth[size_t(y) * width + x]); }
     void write(int32_t x, int32_t y, float z) const {
         if constexpr (Write) depth[size_t(y) * width + x] = z;
+    }
+    // Per-tile occlusion: under Less and LessEqual a depth write only lowers the stored value, so
+    // the farthest stored depth of a tile, taken once per draw, bounds the tile for the whole draw.
+    static constexpr bool kBoundsTile = F == ComparisonFunc::Less || F == ComparisonFunc::LessEqual;
+    // The farthest stored depth in rect (NaN entries, which fail every test, are left out).
+    float farthest(const PixelRect& rect) const {
+        Float8 m(-std::numeric_limits<float>::infinity());
+        float tail = -std::numeric_limits<float>::infinity();
+        for (int32_t y = rect.y0; y <= rect.y1; ++y) {
+            const float* row = depth + size_t(y) * width;
+            int32_t x = rect.x0;
+            for (; x + 7 <= rect.x1; x += 8) {
+                const Float8 d = Float8::load(row + x);
+                m = select(d > m, d, m);
+            }
+            for (; x <= rect.x1; ++x) tail = row[x] > tail ? row[x] : tail;
+        }
+        for (int l = 0; l < 8; ++l) tail = m[l] > tail ? m[l] : tail;
+        return tail;
+    }
+    // True when every fragment of depth >= nearest fails against a tile whose farthest depth is `far`.
+    static bool occluded(float nearest, float far) {
+        return F == ComparisonFunc::Less ? nearest >= far : nearest > far;
     }
 };
 
