@@ -106,7 +106,7 @@ struct TraceFragment {
     float depthAfter;     // and after
     FragmentFate fate;
     bool shaded;          // the pixel shader ran (false for EarlyDepthFailed)
-    glm::vec4 shaderOutput;  // SV_Target0 (NaN when not shaded)
+    glm::vec4 shaderOutput;  // SV_Target0 (NaN when not shaded or discarded)
     glm::vec4 colorBefore;   // render target 0 before and after, as the shader would load it
     glm::vec4 colorAfter;    // (NaN without a colour target)
 };

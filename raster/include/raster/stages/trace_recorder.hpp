@@ -67,6 +67,8 @@ struct FragmentTracer {
         if (record == kNone) return;
         TraceFragment& f = fragments[record];
         f.fate = fate;
+        // The shader ran for a discarded fragment (psInvocations counts it), though it has no output.
+        if (fate == FragmentFate::Discarded) f.shaded = true;
         f.depthAfter = depth ? depth->load(uint32_t(f.x), uint32_t(f.y)) : std::numeric_limits<float>::quiet_NaN();
         f.colorAfter = color ? color->load(uint32_t(f.x), uint32_t(f.y)) : nan4();
     }
