@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cctype>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -21,6 +23,7 @@
 #include "raster/image_io.hpp"
 #include "raster/scenes.hpp"
 #include "view/camera.hpp"
+#include "view/trace_views.hpp"
 
 namespace raster::tools {
 namespace {
@@ -152,10 +155,25 @@ TEST(ViewerScript, ParsesKeysAndPointerTokens) {
     EXPECT_EQ(a[21].y, 100);
     EXPECT_EQ(a[22].verb, Verb::Wait);
     EXPECT_TRUE(parseScript("").empty());
+    const std::vector<Action> views = parseScript("O x L g V c");
+    ASSERT_EQ(views.size(), 6u);
+    EXPECT_EQ(views[0].verb, Verb::ToggleOverdraw);
+    EXPECT_EQ(views[1].verb, Verb::ToggleNonFinite);
+    EXPECT_EQ(views[2].verb, Verb::ToggleWireframe);
+    EXPECT_EQ(views[3].verb, Verb::ToggleGsOutput);
+    EXPECT_EQ(views[4].verb, Verb::NextStage);
+    EXPECT_EQ(views[5].verb, Verb::ClosePixel);
+    // Every key the help lists is bound, and no two bindings share a name.
+    for (const char* key : {"o", "x", "l", "g", "v", "c"}) {
+        bool listed = false;
+        for (const std::string& line : keyHelp())
+            listed = listed || line.starts_with(std::string(1, char(std::toupper(key[0]))) + " ");
+        EXPECT_TRUE(listed) << key << " is missing from the help";
+    }
 }
 
 TEST(ViewerScript, ErrorsNameTheToken) {
-    expectInvalidArgument([] { parseScript("N N X S"); }, {"unknown key 'X'"});
+    expectInvalidArgument([] { parseScript("N N K S"); }, {"unknown key 'K'"});
     expectInvalidArgument([] { parseScript("click:1"); }, {"'click:1'", "click:X,Y"});
     expectInvalidArgument([] { parseScript("click:1,2,3"); }, {"'click:1,2,3'"});
     expectInvalidArgument([] { parseScript("click:-1,2"); }, {"'click:-1,2'"});
@@ -234,6 +252,8 @@ class ViewerTest : public ::testing::Test {
         viewer.run();
         last_messages_ = viewer.messages();
         if (viewer.shownFrame()) last_log_ = viewer.shownFrame()->drawLog;
+        last_traced_ = viewer.shownFrame() && viewer.shownFrame()->trace;
+        last_notes_ = viewer.viewNotes();
         last_camera_ = viewer.camera();
         std::vector<ImageRgba8> shots;
         for (const std::string& path : viewer.screenshots()) shots.push_back(readImageRgba8(path));
@@ -266,6 +286,8 @@ class ViewerTest : public ::testing::Test {
     std::vector<std::string> last_messages_, last_paths_;
     std::vector<PipelineStatistics> last_log_;
     SceneCamera last_camera_{};
+    std::vector<std::string> last_notes_;
+    bool last_traced_ = false;
 };
 
 std::vector<char> fileBytes(const std::string& path) {
@@ -373,7 +395,8 @@ TEST_F(ViewerTest, ClickPrintsColourAndDepth) {
     };
     std::vector<std::string> clicks;
     for (const std::string& m : last_messages_)
-        if (m.starts_with("pixel ") || m.starts_with("click ")) clicks.push_back(m);
+        if ((m.starts_with("pixel ") && !m.starts_with("pixel (")) || m.starts_with("click "))
+            clicks.push_back(m);
     ASSERT_EQ(clicks.size(), 4u);
     EXPECT_EQ(clicks[0], line({1}, 160, 90));
     EXPECT_NE(clicks[0].find("rgba 89 140 64 255"), std::string::npos) << "the occluder: " << clicks[0];
@@ -412,6 +435,301 @@ TEST_F(ViewerTest, CameraOrbitsZoomsFliesAndResets) {
     EXPECT_EQ(last_camera_.eye, flown.eye);
     EXPECT_EQ(last_camera_.target, flown.target);
     EXPECT_FALSE(shots[0].pixels == shots[2].pixels);
+}
+
+// ---- The trace views ---------------------------------------------------------------------------------
+
+// The scene traced straight through the library.
+struct DirectTrace {
+    RenderTarget color;
+    DepthTarget depth;
+    std::unique_ptr<Trace> trace;
+    Viewport viewport;
+};
+DirectTrace traced(const Context::StepLimit& limit, const TraceOptions& options,
+                   const std::string& scene = "particles") {
+    DirectTrace t{
+        RenderTarget(kWidth, kHeight), DepthTarget(kWidth, kHeight), std::make_unique<Trace>(options), {}};
+    Context ctx;
+    ctx.setStepLimit(limit);
+    ctx.setTrace(t.trace.get());
+    makeScene(scene, {.width = kWidth, .height = kHeight, .count = kParticles, .cubes = 4})
+        ->render(ctx, t.color, t.depth);
+    t.viewport = ctx.viewport();
+    return t;
+}
+
+std::vector<std::string> lines(const std::string& text) {
+    std::vector<std::string> out;
+    size_t start = 0;
+    while (start < text.size()) {
+        const size_t end = std::min(text.find('\n', start), text.size());
+        out.push_back(text.substr(start, end - start));
+        start = end + 1;
+    }
+    return out;
+}
+
+double distanceToSegment(glm::dvec2 p, glm::dvec2 a, glm::dvec2 b) {
+    const glm::dvec2 d = b - a;
+    const double len2 = glm::dot(d, d);
+    const double t = len2 > 0 ? std::clamp(glm::dot(p - a, d) / len2, 0.0, 1.0) : 0.0;
+    return glm::length(p - (a + t * d));
+}
+
+// Pixel centres within `reach` of one of the segments.
+bool nearSegments(uint32_t x, uint32_t y, const std::vector<std::pair<glm::dvec2, glm::dvec2>>& segments,
+                  double reach) {
+    for (const auto& [a, b] : segments)
+        if (distanceToSegment({x + 0.5, y + 0.5}, a, b) <= reach) return true;
+    return false;
+}
+
+TEST(TraceViews, HeatRampIsWhiteOnlyAtTheMaximum) {
+    EXPECT_EQ(heatColour(0, 5), (Rgb{0, 0, 0}));
+    EXPECT_EQ(heatColour(5, 5), (Rgb{255, 255, 255}));
+    for (const uint32_t max : {2u, 3u, 7u, 100u, 100000u})
+        for (uint32_t c = 1; c < max; c += std::max(1u, max / 50)) {
+            EXPECT_NE(heatColour(c, max), (Rgb{255, 255, 255})) << c << " of " << max;
+            EXPECT_NE(heatColour(c, max), (Rgb{0, 0, 0})) << c << " of " << max;
+        }
+    EXPECT_EQ(heatColour(99999, 100000)[0], 255);
+    EXPECT_LT(heatColour(99999, 100000)[2], 255);
+}
+
+TEST(TraceViews, NonFiniteImageDimsAndHighlights) {
+    const std::vector<uint8_t> rgba = {255, 255, 255, 255, 30, 60, 90, 255, 255, 0, 255, 255};
+    size_t highlighted = 0;
+    const std::vector<uint8_t> out = nonFiniteImage(rgba, {0, 2, 0}, &highlighted);
+    EXPECT_EQ(highlighted, 1u);
+    EXPECT_EQ(out, (std::vector<uint8_t>{85, 85, 85, 255, 255, 0, 255, 255, 85, 0, 85, 255}))
+        << "a magenta pixel of the scene, dimmed, is no longer the highlight";
+}
+
+TEST(TraceViews, LinesAreClippedToTheImage) {
+    std::vector<uint8_t> rgba(4 * 10 * 10, 0);
+    Canvas canvas{rgba, 10, 10};
+    canvas.line({-1e9f, 5.5f}, {1e9f, 5.5f}, {1, 2, 3});  // far off both sides: clipped, not walked
+    canvas.line({2.5f, 2.5f}, {2.5f, 2.5f}, {9, 9, 9});
+    for (uint32_t x = 0; x < 10; ++x) EXPECT_EQ(rgba[4 * (5 * 10 + x)], 1) << x;
+    EXPECT_EQ(rgba[4 * (2 * 10 + 2)], 9);
+    size_t set = 0;
+    for (size_t i = 3; i < rgba.size(); i += 4) set += rgba[i] != 0;
+    EXPECT_EQ(set, 11u);
+}
+
+TEST_F(ViewerTest, NormalFramesAreNotTraced) {
+    run("N ] S 0 D S");
+    EXPECT_FALSE(last_traced_) << "no view needed a trace";
+    run("O S O S");
+    EXPECT_TRUE(last_traced_) << "O asked for one; switching it off keeps the frame shown";
+}
+
+TEST_F(ViewerTest, OverdrawViewIsTheTracesCounts) {
+    // Overdraw of the whole frame; of draw 1 (O off and on again); then O off: colour.
+    const std::vector<ImageRgba8> shots = run("O S N O O S O S");
+    std::string hottest_draw1;
+    ASSERT_EQ(shots.size(), 3u);
+    for (const auto& [shot, limit, what] : {std::tuple{0, Context::StepLimit{}, "whole frame"},
+                                            std::tuple{1, Context::StepLimit{1}, "draw 1"}}) {
+        const DirectTrace direct = traced(limit, {});
+        const std::vector<uint32_t>& counts = direct.trace->overdraw();
+        ASSERT_EQ(counts.size(), size_t(kWidth) * kHeight);
+        uint32_t max = 0;
+        EXPECT_EQ(shots[size_t(shot)].pixels, overdrawImage(counts, kWidth, kHeight, &max)) << what;
+        // The hottest pixels, and only they, are white; every pixel with a fragment is lit.
+        size_t hottest = 0, first = 0;
+        for (size_t i = 0; i < counts.size(); ++i) {
+            const uint8_t* p = &shots[size_t(shot)].pixels[4 * i];
+            const bool white = p[0] == 255 && p[1] == 255 && p[2] == 255;
+            EXPECT_EQ(white, counts[i] == max)
+                << what << " pixel " << i % kWidth << "," << i / kWidth << ": count " << counts[i] << " of "
+                << max << ", shown " << int(p[0]) << " " << int(p[1]) << " " << int(p[2]);
+            EXPECT_EQ(p[0] + p[1] + p[2] == 0, counts[i] == 0) << what << " pixel " << i;
+            if (counts[i] == max && hottest++ == 0) first = i;
+        }
+        if (shot == 0) {
+            EXPECT_GT(max, 3u) << "particles pile up";
+        } else {
+            EXPECT_EQ(max, 1u) << "the occluder alone covers each pixel once";
+            hottest_draw1 = "overdraw: fragments rasterised per pixel, max 1 at " +
+                            std::to_string(first % kWidth) + "," + std::to_string(first / kWidth) + " (" +
+                            std::to_string(hottest) + " pixels)";
+        }
+    }
+    expectSameImage(shots[2], direct({1}), "O O: the colour image again");
+    EXPECT_TRUE(last_notes_.empty()) << "O is off";
+    run("N O");
+    ASSERT_EQ(last_notes_.size(), 1u);
+    EXPECT_EQ(last_notes_[0], hottest_draw1) << "the HUD names the hottest pixel";
+}
+
+TEST_F(ViewerTest, NanViewOfANormalSceneHighlightsNothing) {
+    for (const std::string scene : {"particles", "fog"}) {
+        const std::vector<ImageRgba8> shots = run("X S X S", scene);
+        ASSERT_EQ(shots.size(), 2u);
+        const RenderTarget expected = direct({}, scene);
+        std::vector<uint8_t> dimmed = expected.toRgba8();
+        dim(dimmed);
+        EXPECT_TRUE(shots[0].pixels == dimmed) << scene << ": the dimmed image, nothing highlighted";
+        size_t magenta = 0;
+        for (size_t i = 0; i < shots[0].pixels.size(); i += 4)
+            magenta +=
+                shots[0].pixels[i] == 255 && shots[0].pixels[i + 1] == 0 && shots[0].pixels[i + 2] == 255;
+        EXPECT_EQ(magenta, 0u) << scene;
+        expectSameImage(shots[1], expected, scene + ": X X");
+        EXPECT_EQ(last_notes_.size(), 0u) << "the view is off";
+    }
+    run("X");
+    ASSERT_EQ(last_notes_.size(), 1u);
+    EXPECT_EQ(last_notes_[0], "NaN/Inf: 0 pixels with a non-finite shader output (magenta)");
+}
+
+TEST_F(ViewerTest, ClickPrintsThePixelsHistory) {
+    // Stepped (the occluder and two particles) and the whole frame, the same pixel twice.
+    run("N ] ] click:160,90 0 click:160,90 click:160,90 C click:5,5");
+    const auto expected = [](const Context::StepLimit& limit, int32_t x, int32_t y) {
+        const DirectTrace t = traced(limit, {.pixels = {x, y, x, y}, .geometry = false});
+        return std::pair{t.trace->pixelHistory(x, y).size(), lines(formatPixelHistory(*t.trace, x, y))};
+    };
+    const std::vector<std::pair<Context::StepLimit, std::pair<int32_t, int32_t>>> clicks = {
+        {{2, 2}, {160, 90}}, {{}, {160, 90}}, {{}, {160, 90}}, {{}, {5, 5}}};
+    size_t m = 0;
+    for (const auto& [limit, pixel] : clicks) {
+        const auto [x, y] = pixel;
+        const std::string head = "pixel " + std::to_string(x) + "," + std::to_string(y) + ": rgba";
+        while (m < last_messages_.size() && !last_messages_[m].starts_with(head)) ++m;
+        ASSERT_LT(m, last_messages_.size()) << "no click report " << head;
+        const auto [count, text] = expected(limit, x, y);
+        ASSERT_LE(m + 1 + text.size(), last_messages_.size());
+        const std::vector<std::string> printed(last_messages_.begin() + long(m) + 1,
+                                               last_messages_.begin() + long(m + 1 + text.size()));
+        EXPECT_EQ(printed, text) << head << ": the printed history is formatPixelHistory's";
+        EXPECT_EQ(printed[0], "pixel (" + std::to_string(x) + ", " + std::to_string(y) +
+                                  "): " + std::to_string(count) + " fragment" + (count == 1 ? "" : "s"));
+        if (x == 160 && limit.draws == 2) EXPECT_EQ(count, 2u) << "the occluder and particle 0";
+        if (x == 160 && limit.draws != 2) EXPECT_GT(count, 2u);
+        m += 1 + text.size();
+    }
+}
+
+// The segments of input primitive `primitive` of `draw` after setup, from a direct trace.
+std::vector<std::pair<glm::dvec2, glm::dvec2>> primitiveEdges(const TraceDraw& draw, uint32_t primitive) {
+    std::vector<std::pair<glm::dvec2, glm::dvec2>> edges;
+    for (const TracePrimitive& p : draw.primitives) {
+        if (p.primitive != primitive) continue;
+        const auto v = [&](int i) { return glm::dvec2(p.screen[i].x, p.screen[i].y); };
+        if (p.vertexCount == 3) edges.insert(edges.end(), {{v(0), v(1)}, {v(1), v(2)}, {v(2), v(0)}});
+        if (p.vertexCount == 4)
+            edges.insert(edges.end(), {{v(0), v(1)}, {v(1), v(3)}, {v(3), v(2)}, {v(2), v(0)}});
+    }
+    return edges;
+}
+
+TEST_F(ViewerTest, WireframeOfTheCurrentPrimitiveIsNearItsEdges) {
+    // The third primitive: of the particles' second draw (billboards), of the fog's first (triangles).
+    struct Case {
+        std::string scene, steps;
+        Context::StepLimit limit, next;
+        uint32_t draw;
+    };
+    for (const Case& c :
+         {Case{"particles", "N ] ] ]", {2, 3}, {2, 4}, 1}, Case{"fog", "] ] ]", {1, 3}, {1, 4}, 0}}) {
+        const std::vector<ImageRgba8> shots = run(c.steps + " S L S ] L S", c.scene);
+        ASSERT_EQ(shots.size(), 3u) << c.scene;
+        expectSameImage(shots[0], direct(c.limit, c.scene), c.scene + " before L");
+        expectSameImage(shots[2], direct(c.next, c.scene), c.scene + " after L L");
+        const DirectTrace t = traced(c.limit, {}, c.scene);
+        const TraceDraw* draw = findTraceDraw(*t.trace, c.draw);
+        ASSERT_NE(draw, nullptr);
+        const auto edges = primitiveEdges(*draw, 2);
+        ASSERT_FALSE(edges.empty()) << c.scene << ": primitive 2 was set up";
+        size_t changed = 0;
+        for (uint32_t y = 0; y < kHeight; ++y)
+            for (uint32_t x = 0; x < kWidth; ++x) {
+                const size_t i = 4 * (size_t(y) * kWidth + x);
+                if (std::equal(&shots[0].pixels[i], &shots[0].pixels[i] + 4, &shots[1].pixels[i])) continue;
+                ++changed;
+                EXPECT_TRUE(nearSegments(x, y, edges, 1.0)) << c.scene << ": pixel " << x << "," << y;
+                EXPECT_EQ((Rgb{shots[1].pixels[i], shots[1].pixels[i + 1], shots[1].pixels[i + 2]}),
+                          kCurrentPrimitiveColour);
+            }
+        EXPECT_GE(changed, 8u) << c.scene;
+    }
+    run("N ] ] ] L");
+    ASSERT_EQ(last_notes_.size(), 1u);
+    EXPECT_EQ(last_notes_[0], "primitive 3 of draw 2 (SV_PrimitiveID 2): rectangle (yellow)");
+    run("L");
+    ASSERT_EQ(last_notes_.size(), 1u);
+    EXPECT_EQ(last_notes_[0], "wireframe: step with ] to a primitive");
+}
+
+TEST_F(ViewerTest, GeometryShaderOutputAndStages) {
+    // G, then V through every stage: VS output, GS output (G's picture), set-up primitives, final.
+    const std::vector<ImageRgba8> shots = run("N ] ] ] G S G V S V S V S V S");
+    ASSERT_EQ(shots.size(), 5u);
+    const Context::StepLimit limit{2, 3};
+    const DirectTrace t = traced(limit, {});
+    const TraceDraw* draw = findTraceDraw(*t.trace, 1);
+    ASSERT_NE(draw, nullptr);
+    ASSERT_EQ(draw->gsVertices.size(), 12u) << "three billboards, a 4-vertex strip each";
+    std::vector<uint8_t> dimmed = t.color.toRgba8();
+    dim(dimmed);
+    // The GS output's edges: each strip's (i, i+1) and (i, i+2), in screen space.
+    std::vector<std::pair<glm::dvec2, glm::dvec2>> gs_edges;
+    std::vector<glm::dvec2> centres;
+    for (size_t s = 0; s < 12; s += 4) {
+        glm::dvec2 v[4], centre{0.0};
+        for (int i = 0; i < 4; ++i) {
+            const std::vector<float>& val = draw->gsVertices[s + size_t(i)].values;
+            const size_t p = draw->gsPosition;
+            glm::vec2 screen;
+            ASSERT_TRUE(clipToScreen({val[p], val[p + 1], val[p + 2], val[p + 3]}, t.viewport, screen));
+            v[i] = screen, centre += v[i] / 4.0;
+        }
+        gs_edges.insert(gs_edges.end(),
+                        {{v[0], v[1]}, {v[1], v[2]}, {v[2], v[3]}, {v[0], v[2]}, {v[1], v[3]}});
+        centres.push_back(centre);
+    }
+    const auto check = [&](const ImageRgba8& shot, const Rgb& colour, const auto& near, const char* what) {
+        size_t drawn = 0;
+        for (uint32_t y = 0; y < kHeight; ++y)
+            for (uint32_t x = 0; x < kWidth; ++x) {
+                const size_t i = 4 * (size_t(y) * kWidth + x);
+                if (std::equal(&shot.pixels[i], &shot.pixels[i] + 4, &dimmed[i])) continue;
+                ++drawn;
+                EXPECT_TRUE(near(x, y)) << what << ": pixel " << x << "," << y;
+                EXPECT_EQ((Rgb{shot.pixels[i], shot.pixels[i + 1], shot.pixels[i + 2]}), colour) << what;
+            }
+        EXPECT_GE(drawn, 9u) << what;
+    };
+    check(
+        shots[0], kGsColour, [&](uint32_t x, uint32_t y) { return nearSegments(x, y, gs_edges, 1.0); }, "G");
+    check(
+        shots[1], kVertexColour,
+        [&](uint32_t x, uint32_t y) {
+            for (const glm::dvec2& c : centres)
+                if (std::abs(x + 0.5 - c.x) <= 2.0 && std::abs(y + 0.5 - c.y) <= 2.0) return true;
+            return false;
+        },
+        "V: the GS invocations' centres");
+    EXPECT_EQ(shots[2].pixels, shots[0].pixels) << "V's second stage is G's";
+    std::vector<std::pair<glm::dvec2, glm::dvec2>> set_up;
+    for (uint32_t p = 0; p < 3; ++p) {
+        const auto e = primitiveEdges(*draw, p);
+        set_up.insert(set_up.end(), e.begin(), e.end());
+    }
+    check(
+        shots[3], kRasterizedColour, [&](uint32_t x, uint32_t y) { return nearSegments(x, y, set_up, 1.0); },
+        "V: set-up primitives");
+    expectSameImage(shots[4], direct(limit), "V back to the final image");
+    // The fog scene has no geometry shader: its VS output is in clip space and placed directly.
+    run("N ] ] V", "fog");
+    ASSERT_EQ(last_notes_.size(), 1u);
+    EXPECT_NE(last_notes_[0].find("vertices on screen"), std::string::npos) << last_notes_[0];
+    run("N ] ] G", "fog");
+    ASSERT_EQ(last_notes_.size(), 1u);
+    EXPECT_NE(last_notes_[0].find("has no geometry shader"), std::string::npos) << last_notes_[0];
 }
 
 TEST_F(ViewerTest, ResizeRendersAtTheWindowsSize) {

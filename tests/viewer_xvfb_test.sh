@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # raster view in a real window: SDL's x11 driver on a virtual X server (xvfb-run). Steps through the
-# particles scene, clicks a pixel and takes screenshots, then runs the same script headless; the
-# screenshots and the click reports must be the same, byte for byte. Exit 77 (CTest: skipped) only
-# when xvfb-run is missing.
+# particles scene, clicks pixels (each prints its colour and, from a traced render, its history),
+# takes screenshots of the frame, the current primitive's wireframe and the overdraw view, then runs
+# the same script headless; the screenshots and everything printed about the clicks must be the
+# same, byte for byte. Exit 77 (CTest: skipped) only when xvfb-run is missing.
 #   bash tests/viewer_xvfb_test.sh build/bin/raster
 set -euo pipefail
 raster=$1
@@ -17,7 +18,7 @@ fail() {
   exit 1
 }
 
-script="N ] ] ] [ P N 0 N ] click:160,90 S 0 click:160,90 click:20,20 S Esc"
+script="N ] ] ] [ P N 0 N ] click:160,90 S 0 click:160,90 click:20,20 S C N ] ] ] L S L O S O Esc"
 # The window run must not inherit a headless driver from the caller's environment.
 SDL_VIDEODRIVER=x11 timeout 50 xvfb-run -a -s "-screen 0 640x480x24" \
   "$raster" view particles --size 320x180 --script "$script" --screenshot-dir "$dir/window" \
@@ -28,9 +29,14 @@ cat "$dir/window.txt"
 
 grep -q "video driver x11" "$dir/window.txt" || fail "the window run did not use SDL's x11 driver"
 grep -q "video driver offscreen" "$dir/headless.txt" || fail "the headless run did not use SDL's offscreen driver"
-diff <(grep '^pixel' "$dir/window.txt") <(grep '^pixel' "$dir/headless.txt") || fail "click reports differ"
-[[ $(grep -c '^pixel' "$dir/window.txt") == 3 ]] || fail "expected three click reports"
-for shot in particles-0001.png particles-0002.png; do
+# Click reports and pixel histories: every line but the driver's and the screenshots' paths.
+printed() { grep -v -e '^raster view:' -e '^screenshot ' -e '^window ' "$1"; }
+diff <(printed "$dir/window.txt") <(printed "$dir/headless.txt") || fail "click reports or histories differ"
+[[ $(grep -c '^pixel [0-9]' "$dir/window.txt") == 3 ]] || fail "expected three click reports"
+[[ $(grep -c '^pixel ([0-9]*, [0-9]*): [0-9]* fragment' "$dir/window.txt") == 3 ]] ||
+  fail "expected three pixel histories"
+grep -q '^pixel (160, 90): 2 fragments$' "$dir/window.txt" || fail "pixel 160,90 at draw 2 primitive 1: the occluder and a particle"
+for shot in particles-0001.png particles-0002.png particles-0003.png particles-0004.png; do
   [[ -s $dir/window/$shot ]] || fail "the window run wrote no $shot"
   cmp "$dir/window/$shot" "$dir/headless/$shot" || fail "$shot differs between the window and headless"
 done

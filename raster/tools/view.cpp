@@ -17,6 +17,8 @@ constexpr const char* kUsage =
     "  keys first (also click:X,Y  drag:X0,Y0,X1,Y1  wheel:N  resize:WxH  wait); --headless runs it\n"
     "  on SDL's offscreen driver and exits. Screenshots (S, F12) save the framebuffer to\n"
     "  D/<scene>-NNNN.png (D defaults to .); --screenshot-window also saves the window, text included.\n"
+    "  A click prints the pixel's colour and depth, then its history (every fragment, from a traced\n"
+    "  render); O, X, L, G and V show views of the pipeline trace (frames are traced only for them).\n"
     "keys:\n";
 
 // "WxH" → width, height, each 1..RenderTarget::kMaxSize.

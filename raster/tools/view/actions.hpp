@@ -17,6 +17,12 @@ enum class Verb {
     PreviousPrimitive,  // [
     WholeFrame,         // 0
     ToggleDepth,        // D
+    ToggleOverdraw,     // O: overdraw heat map
+    ToggleNonFinite,    // X: NaN/Inf shader outputs over the dimmed image
+    ToggleWireframe,    // L: wireframe of the current primitive
+    ToggleGsOutput,     // G: the geometry shader's output of the current draw
+    NextStage,          // V: VS points → GS output → set-up primitives → final image
+    ClosePixel,         // C: close the pixel history (stop tracing the pixel)
     Screenshot,         // S, F12
     ToggleHelp,         // H, F1
     ToggleStatistics,   // I
@@ -33,7 +39,7 @@ enum class Verb {
 struct Action {
     Verb verb;
     int x = 0, y = 0, z = 0;  // Fly: forward, right, up steps; Orbit: dx, dy; Zoom: x notches;
-                              // Click: window pixel; Resize: width, height
+                              // Click: window pixel (prints its colour and history); Resize: width, height
 };
 
 // One key name (case-insensitive: "n", "]", "F12", "Esc", "Shift+S", "PageUp") → its action, or

@@ -12,9 +12,9 @@
 namespace raster::tools {
 namespace {
 
-constexpr int kPadding = 4;      // font pixels around the text
-constexpr int kLineHeight = 12;  // font pixels: stb_easy_font's glyphs are 7 high, descenders 2 more
-constexpr int kColumnGap = 10;   // font pixels between tab-separated cells
+constexpr int kPadding = kPanelPadding;        // font pixels around the text
+constexpr int kLineHeight = kPanelLineHeight;  // stb_easy_font's glyphs are 7 high, descenders 2 more
+constexpr int kColumnGap = 10;                 // font pixels between tab-separated cells
 
 struct FontVertex {  // stb_easy_font's vertex layout
     float x, y, z;
@@ -59,12 +59,17 @@ SDL_Point panelSize(const TextPanel& panel, int scale) {
     return {(width + 2 * kPadding) * scale, (int(panel.lines.size()) * kLineHeight + 2 * kPadding) * scale};
 }
 
+int panelLeft(SDL_Renderer* renderer, const TextPanel& panel, int scale) {
+    if (panel.x >= 0) return panel.x;
+    int window_width = 0, window_height = 0;
+    SDL_GetRendererOutputSize(renderer, &window_width, &window_height);
+    return window_width + panel.x - panelSize(panel, scale).x;
+}
+
 void drawPanel(SDL_Renderer* renderer, const TextPanel& panel, int scale) {
     if (panel.lines.empty()) return;
     const SDL_Point size = panelSize(panel, scale);
-    int window_width = 0, window_height = 0;
-    SDL_GetRendererOutputSize(renderer, &window_width, &window_height);
-    const int left = panel.x >= 0 ? panel.x : window_width + panel.x - size.x;
+    const int left = panelLeft(renderer, panel, scale);
     SDL_SetRenderDrawBlendMode(renderer, SDL_BLENDMODE_BLEND);
     SDL_SetRenderDrawColor(renderer, 0, 0, 0, 170);
     const SDL_Rect background{left, panel.y, size.x, size.y};

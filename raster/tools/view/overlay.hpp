@@ -16,6 +16,12 @@ struct TextPanel {
     SDL_Color color{255, 255, 255, 255};
 };
 
+// Font pixels (times the scale in window pixels) of a panel's padding and of a line.
+constexpr int kPanelPadding = 4;
+constexpr int kPanelLineHeight = 12;
+
+// The panel's left edge in window pixels (panel.x counts from the right edge when negative).
+int panelLeft(SDL_Renderer* renderer, const TextPanel& panel, int scale);
 // The panel's size in window pixels at `scale` (font pixels per window pixel).
 SDL_Point panelSize(const TextPanel& panel, int scale);
 void drawPanel(SDL_Renderer* renderer, const TextPanel& panel, int scale);

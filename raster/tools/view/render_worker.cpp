@@ -90,10 +90,26 @@ std::shared_ptr<RenderedFrame> RenderWorker::render(Context& context, uint64_t i
         frame->depth = DepthTarget(request.scene.width, request.scene.height);
         context.resetFrameStatistics();
         context.setStepLimit(request.limit);
+        if (request.trace.any()) {
+            TraceOptions options;
+            options.geometry = request.trace.geometry;
+            options.maxGeometryRecords = request.trace.geometry ? kViewerGeometryRecords : 0;
+            if (request.trace.pixel)
+                options.pixels = {request.trace.x, request.trace.y, request.trace.x, request.trace.y};
+            frame->trace = std::make_unique<Trace>(options);
+        }
+        context.setTrace(frame->trace.get());
         const auto t0 = std::chrono::steady_clock::now();
-        scene_->render(context, frame->color, frame->depth);
+        try {
+            scene_->render(context, frame->color, frame->depth);
+        } catch (...) {
+            context.setTrace(nullptr);
+            throw;
+        }
+        context.setTrace(nullptr);
         frame->milliseconds =
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        frame->viewport = context.viewport();
         frame->drawLog = context.drawStatisticsLog();
         frame->frameStatistics = context.frameStatistics();
         frame->drawCount = context.drawCount();

@@ -2,6 +2,9 @@
 // frame takes seconds. One request is pending at most: a new one replaces a pending one, and a
 // running render is let finish (a scene cannot be interrupted mid-draw); its result is newer than
 // what is shown, so it is shown until the latest one arrives.
+//
+// A request may ask for the pipeline trace (raster/include/raster/trace.hpp), which the trace views
+// need; frames nobody asked to trace render untraced, at full speed.
 #pragma once
 
 #include <atomic>
@@ -20,10 +23,30 @@
 
 namespace raster::tools {
 
+// What a frame's trace must hold; nothing asked: no trace.
+struct TraceRequest {
+    bool counts = false;    // overdraw and non-finite counts (kept by every trace)
+    bool geometry = false;  // IA/VS/GS/setup records (TraceOptions::geometry)
+    bool pixel = false;     // the fragments of pixel (x, y)
+    int32_t x = 0, y = 0;
+
+    bool any() const { return counts || geometry || pixel; }
+    // A trace made for this request has everything `need` asks for.
+    bool covers(const TraceRequest& need) const {
+        return (any() || !need.any()) && (geometry || !need.geometry) &&
+               (!need.pixel || (pixel && x == need.x && y == need.y));
+    }
+};
+
+// Geometry records the viewer keeps per draw and kind (TraceOptions::maxGeometryRecords): all of
+// the default particles scene's 10000 particles' 40000 GS output vertices, with room to spare.
+constexpr uint32_t kViewerGeometryRecords = 1u << 17;
+
 struct RenderRequest {
     SceneOptions scene;  // only size and camera may change between requests of one worker
     Context::StepLimit limit;
     std::string stepLabel;  // what the overlay says about the step position
+    TraceRequest trace;
 };
 
 struct RenderedFrame {
@@ -33,9 +56,11 @@ struct RenderedFrame {
     DepthTarget depth;
     std::vector<PipelineStatistics> drawLog;  // Context::drawStatisticsLog of this frame
     PipelineStatistics frameStatistics;
-    uint32_t drawCount = 0;   // draws the scene issued, run or skipped
-    double milliseconds = 0;  // the scene's render call
-    std::string error;        // what a raster::Error said, if the render threw
+    uint32_t drawCount = 0;        // draws the scene issued, run or skipped
+    double milliseconds = 0;       // the scene's render call
+    std::string error;             // what a raster::Error said, if the render threw
+    Viewport viewport;             // the context's viewport after the scene's render (for clip → screen)
+    std::unique_ptr<Trace> trace;  // when request.trace.any()
 };
 
 class RenderWorker {

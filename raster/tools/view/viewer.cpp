@@ -2,6 +2,7 @@
 
 #include <SDL.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <optional>
@@ -174,9 +175,13 @@ void Viewer::handleEvent(const SDL_Event& event) {
 
 void Viewer::runQueue() {
     while (!queue_.empty() && !quit_) {
-        if (!perform(queue_.front())) return;  // later actions wait their turn, as typed
+        const Action action = queue_.front();
+        if (!perform(action)) return;  // later actions wait their turn, as typed
         queue_.pop_front();
         dirty_ = true;
+        // A click's history comes with a traced render: what follows waits for it, so the history
+        // printed is that of the frame clicked on.
+        if (action.verb == Verb::Click && !upToDate()) queue_.push_front({Verb::Wait});
     }
 }
 
@@ -206,7 +211,30 @@ bool Viewer::perform(const Action& a) {
             cursor_.showAll(), requestRender();
             return true;
         case Verb::ToggleDepth:
-            depth_view_ = !depth_view_, uploadImage();
+        case Verb::ToggleOverdraw:
+        case Verb::ToggleNonFinite: {
+            const ImageView v = a.verb == Verb::ToggleDepth      ? ImageView::Depth
+                                : a.verb == Verb::ToggleOverdraw ? ImageView::Overdraw
+                                                                 : ImageView::NonFinite;
+            view_ = view_ == v ? ImageView::Colour : v;
+            viewsChanged();
+            return true;
+        }
+        case Verb::ToggleWireframe:
+            wireframe_ = !wireframe_, viewsChanged();
+            return true;
+        case Verb::ToggleGsOutput:
+            stage_ = stage_ == Stage::GsOutput ? Stage::Final : Stage::GsOutput, viewsChanged();
+            return true;
+        case Verb::NextStage:
+            stage_ = stage_ == Stage::Final      ? Stage::Vertices
+                     : stage_ == Stage::Vertices ? Stage::GsOutput
+                     : stage_ == Stage::GsOutput ? Stage::Primitives
+                                                 : Stage::Final;
+            viewsChanged();
+            return true;
+        case Verb::ClosePixel:
+            pixel_selected_ = history_pending_ = false;
             return true;
         case Verb::ToggleHelp:
             help_ = !help_, statistics_ = statistics_ && !help_;
@@ -255,7 +283,43 @@ void Viewer::requestRender() {
     request.scene.camera = camera_moved_ ? std::optional<SceneCamera>(camera_) : std::nullopt;
     request.limit = cursor_.limit();
     request.stepLabel = cursor_.label();
+    request.trace = requested_trace_ = traceNeeds();
     requested_id_ = worker_->request(std::move(request));
+}
+
+TraceRequest Viewer::traceNeeds() const {
+    TraceRequest t;
+    t.counts = view_ == ImageView::Overdraw || view_ == ImageView::NonFinite;
+    t.geometry = wireframe_ || stage_ != Stage::Final;
+    if (pixel_selected_ && uint32_t(pixel_x_) < width_ && uint32_t(pixel_y_) < height_)
+        t.pixel = true, t.x = pixel_x_, t.y = pixel_y_;
+    return t;
+}
+
+void Viewer::viewsChanged() {
+    const TraceRequest need = traceNeeds();
+    // Views switched off, or on with what the shown (or the coming) frame has: no new render.
+    const bool coming = !upToDate() && requested_trace_.covers(need);
+    if (!coming && (!shown_ || !shown_->request.trace.covers(need)))
+        requestRender();
+    else
+        uploadImage();
+}
+
+bool Viewer::shownHasHistory() const {
+    return shown_ && shown_->trace && shown_->request.trace.pixel && shown_->request.trace.x == pixel_x_ &&
+           shown_->request.trace.y == pixel_y_;
+}
+
+void Viewer::printHistory() {
+    history_pending_ = false;
+    const std::string text = formatPixelHistory(*shown_->trace, pixel_x_, pixel_y_);
+    size_t start = 0;
+    while (start < text.size()) {
+        const size_t end = std::min(text.find('\n', start), text.size());
+        say(text.substr(start, end - start));
+        start = end + 1;
+    }
 }
 
 void Viewer::followWindowSize() {
@@ -290,6 +354,7 @@ void Viewer::show(std::shared_ptr<RenderedFrame> frame) {
     }
     shown_ = std::move(frame);
     uploadImage();
+    if (history_pending_ && pixel_selected_ && shownHasHistory()) printHistory();
 }
 
 }  // namespace raster::tools

@@ -3,8 +3,12 @@
 // camera, and runs a script of the same keys (headless, for tests, or in a real window).
 //
 // The window shows the framebuffer with text drawn over it; screenshots save the framebuffer
-// itself (or, in depth view, the depth image), never the text, so a screenshot is exactly what
-// rendering the scene through the library gives.
+// itself (or the image of the view shown: depth, overdraw, NaN/Inf, wireframes), never the text, so
+// a screenshot of the colour view is exactly what rendering the scene through the library gives.
+//
+// The trace views (overdraw, NaN/Inf, the wireframes, a clicked pixel's history) render the frame
+// again with the pipeline trace on, on the render worker like any frame; frames no view needs a
+// trace for render untraced.
 #pragma once
 
 #include <deque>
@@ -22,6 +26,11 @@ struct SDL_Texture;
 union SDL_Event;
 
 namespace raster::tools {
+
+// The image the window shows (D, O, X).
+enum class ImageView { Colour, Depth, Overdraw, NonFinite };
+// The pipeline stage drawn over the dimmed image (V cycles, G toggles the GS output).
+enum class Stage { Final, Vertices, GsOutput, Primitives };
 
 struct ViewerOptions {
     std::string scene = "particles";
@@ -53,8 +62,12 @@ class Viewer {
     const StepCursor& cursor() const { return cursor_; }
     const SceneCamera& camera() const { return camera_; }
     const std::vector<std::string>& screenshots() const { return screenshots_; }
-    // Every line the viewer printed to stdout (click reports, screenshot paths).
+    // Every line the viewer printed to stdout (click reports, pixel histories, screenshot paths).
     const std::vector<std::string>& messages() const { return messages_; }
+    ImageView imageView() const { return view_; }
+    Stage stage() const { return stage_; }
+    // What the views say about the shown image (the overdraw's maximum, ...), as the HUD shows it.
+    const std::vector<std::string>& viewNotes() const { return view_notes_; }
 
   private:
     void handleEvent(const SDL_Event& event);
@@ -70,6 +83,14 @@ class Viewer {
     void drawWindow();
     void saveScreenshot();
     void reportPixel(int windowX, int windowY);
+    // What the shown views need the frame's trace to hold.
+    TraceRequest traceNeeds() const;
+    // After a view changed: re-render with the trace it needs, or just redraw the image.
+    void viewsChanged();
+    bool shownHasHistory() const;
+    void printHistory();
+    void composeViews();  // the trace views into image_ (uploadImage's second half)
+    std::string viewName() const;
     void say(const std::string& line);
 
     ViewerOptions options_;
@@ -86,11 +107,19 @@ class Viewer {
     uint32_t width_ = 0, height_ = 0;  // the size renders are requested at: the window's
     uint64_t requested_id_ = 0, shown_id_ = 0;
     std::shared_ptr<RenderedFrame> shown_;
-    std::vector<uint8_t> image_;  // RGBA8 of what the window shows: colour, or depth as grey
+    std::vector<uint8_t> image_;  // RGBA8 of what the window shows: colour, depth as grey, a trace view
+    std::vector<std::string> view_notes_;
+    uint32_t overdraw_max_ = 0;
     std::string render_error_;
 
     bool quit_ = false, dirty_ = true;
-    bool depth_view_ = false, help_ = false, statistics_ = false;
+    ImageView view_ = ImageView::Colour;
+    Stage stage_ = Stage::Final;
+    bool wireframe_ = false, help_ = false, statistics_ = false;
+    // The clicked pixel whose history is traced and shown (until C); printed once per click.
+    bool pixel_selected_ = false, history_pending_ = false;
+    int32_t pixel_x_ = 0, pixel_y_ = 0;
+    TraceRequest requested_trace_;
     bool left_down_ = false, dragging_ = false;
     int press_x_ = 0, press_y_ = 0, last_x_ = 0, last_y_ = 0;
     int screenshot_counter_ = 0;

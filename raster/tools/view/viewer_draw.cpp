@@ -4,10 +4,12 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <sstream>
 
 #include "overlay.hpp"
 #include "raster/image_io.hpp"
+#include "trace_views.hpp"
 #include "viewer.hpp"
 
 namespace raster::tools {
@@ -88,7 +90,8 @@ void Viewer::uploadImage() {
     dirty_ = true;
     if (!shown_) return;
     const uint32_t w = shown_->color.width(), h = shown_->color.height();
-    image_ = depth_view_ ? depthImage(shown_->depth) : shown_->color.toRgba8();
+    image_ = view_ == ImageView::Depth ? depthImage(shown_->depth) : shown_->color.toRgba8();
+    composeViews();
     if (!texture_ || texture_width_ != w || texture_height_ != h) {
         if (texture_) SDL_DestroyTexture(texture_);
         // RGBA32 is R, G, B, A in memory order on any endianness: the render target's own layout.
@@ -100,6 +103,131 @@ void Viewer::uploadImage() {
         texture_width_ = w, texture_height_ = h;
     }
     SDL_UpdateTexture(texture_, nullptr, image_.data(), int(4 * w));
+}
+
+std::string Viewer::viewName() const {
+    std::string name = view_ == ImageView::Depth       ? "depth"
+                       : view_ == ImageView::Overdraw  ? "overdraw"
+                       : view_ == ImageView::NonFinite ? "NaN/Inf"
+                                                       : "colour";
+    if (stage_ == Stage::Vertices) name += " + VS output";
+    if (stage_ == Stage::GsOutput) name += " + GS output";
+    if (stage_ == Stage::Primitives) name += " + set-up primitives";
+    if (wireframe_) name += " + primitive wireframe";
+    return name;
+}
+
+void Viewer::composeViews() {
+    view_notes_.clear();
+    overdraw_max_ = 0;
+    const RenderedFrame& f = *shown_;
+    const uint32_t w = f.color.width(), h = f.color.height();
+    const Trace* trace = f.trace.get();
+    const bool counts = trace && f.request.trace.any();
+    const bool geometry = trace && f.request.trace.geometry;
+    const std::string tracing = "tracing...";  // the traced frame is on its way (viewsChanged)
+
+    if (view_ == ImageView::Overdraw || view_ == ImageView::NonFinite) {
+        if (!counts) {
+            view_notes_.push_back((view_ == ImageView::Overdraw ? "overdraw: " : "NaN/Inf: ") + tracing);
+        } else {
+            // The counts are of the last traced draw's target: the frame's own size.
+            const bool sized = trace->width() == w && trace->height() == h;
+            const std::vector<uint32_t> none;
+            if (view_ == ImageView::Overdraw) {
+                image_ = overdrawImage(sized ? trace->overdraw() : none, w, h, &overdraw_max_);
+                size_t hottest = 0, at = 0;
+                for (size_t i = 0; sized && i < trace->overdraw().size(); ++i)
+                    if (trace->overdraw()[i] == overdraw_max_ && overdraw_max_ > 0 && hottest++ == 0) at = i;
+                view_notes_.push_back(
+                    "overdraw: fragments rasterised per pixel, max " + std::to_string(overdraw_max_) +
+                    (hottest > 0 ? " at " + std::to_string(at % w) + "," + std::to_string(at / w) +
+                                       (hottest > 1 ? " (" + std::to_string(hottest) + " pixels)" : "")
+                                 : ""));
+            } else {
+                size_t highlighted = 0;
+                image_ = nonFiniteImage(image_, sized ? trace->nonFinite() : none, &highlighted);
+                view_notes_.push_back("NaN/Inf: " + std::to_string(highlighted) +
+                                      " pixels with a non-finite shader output (magenta)");
+            }
+        }
+    }
+
+    // The draw the stage views show: the last one run (the one being stepped).
+    const Context::StepLimit& limit = f.request.limit;
+    const bool whole = limit.draws == UINT32_MAX;
+    const uint32_t started = whole ? f.drawCount : std::min(limit.draws, f.drawCount);
+    const bool has_draw = started > 0;
+    const uint32_t draw = has_draw ? started - 1 : 0;
+    const TraceDraw* traced = geometry && has_draw ? findTraceDraw(*trace, draw) : nullptr;
+    Canvas canvas{image_, w, h};
+    const std::string draw_name = "draw " + std::to_string(draw + 1);
+    if (stage_ != Stage::Final) {
+        dim(image_);
+        const char* stage = stage_ == Stage::Vertices   ? "stage VS output"
+                            : stage_ == Stage::GsOutput ? "stage GS output"
+                                                        : "stage set-up primitives";
+        if (!geometry) {
+            view_notes_.push_back(std::string(stage) + ": " + tracing);
+        } else if (!traced) {
+            view_notes_.push_back(std::string(stage) + ": no draw has run");
+        } else if (stage_ == Stage::Vertices) {
+            const size_t n = drawVertices(canvas, *traced, f.viewport);
+            view_notes_.push_back(
+                std::string(stage) + " of " + draw_name + ": " +
+                (traced->geometryShader.empty()
+                     ? std::to_string(n) + " of " + std::to_string(traced->verticesTotal) +
+                           " vertices on screen (cyan)"
+                     : std::to_string(n) +
+                           " primitives' GS output centres (cyan; the VS output feeds the GS)"));
+        } else if (stage_ == Stage::GsOutput) {
+            if (traced->geometryShader.empty()) {
+                view_notes_.push_back(std::string(stage) + ": " + draw_name +
+                                      " has no geometry shader (V: set-up primitives)");
+            } else {
+                const size_t n = drawGsOutput(canvas, *traced, f.viewport);
+                view_notes_.push_back(std::string(stage) + " of " + draw_name + ": " + std::to_string(n) +
+                                      " strips, " + std::to_string(traced->gsVerticesTotal) +
+                                      " vertices (orange)");
+            }
+        } else {
+            const size_t n = drawPrimitives(canvas, *traced);
+            view_notes_.push_back(std::string(stage) + " of " + draw_name + ": " + std::to_string(n) +
+                                  " of " + std::to_string(traced->primitivesTotal) +
+                                  " (green rasterized, blue clipped, red culled, grey no pixels)");
+        }
+        if (traced && (traced->vertices.size() < traced->verticesTotal ||
+                       traced->gsVertices.size() < traced->gsVerticesTotal ||
+                       traced->primitives.size() < traced->primitivesTotal))
+            view_notes_.push_back("(the trace kept the first " + std::to_string(kViewerGeometryRecords) +
+                                  " records of each kind)");
+    }
+
+    if (wireframe_) {
+        // The current primitive: the last the step limit lets the last started draw run.
+        uint64_t run = 0;  // primitives of the draw the limit lets run
+        if (!whole && has_draw && draw < f.drawLog.size())
+            run = std::min(limit.primitives, f.drawLog[draw].iaPrimitives);
+        const uint64_t primitive = run > 0 ? run - 1 : 0;
+        if (run == 0) {
+            view_notes_.push_back("wireframe: step with ] to a primitive");
+        } else if (!geometry) {
+            view_notes_.push_back("wireframe: " + tracing);
+        } else {
+            std::string fates;
+            size_t shown = 0;
+            if (traced) {
+                shown = drawInputPrimitive(canvas, *traced, uint32_t(primitive), kCurrentPrimitiveColour);
+                for (const TracePrimitive& p : traced->primitives)
+                    if (p.primitive == primitive)
+                        fates += std::string(fates.empty() ? "" : ", ") + toString(p.fate) +
+                                 (p.clipped ? " (clipped)" : "");
+            }
+            view_notes_.push_back("primitive " + std::to_string(run) + " of " + draw_name +
+                                  " (SV_PrimitiveID " + std::to_string(primitive) + "): " +
+                                  (fates.empty() ? "not recorded" : fates) + (shown > 0 ? " (yellow)" : ""));
+        }
+    }
 }
 
 void Viewer::drawWindow() {
@@ -122,9 +250,10 @@ void Viewer::composeWindow() {
     if (shown_) {
         hud.lines.push_back(options_.scene + "  " + std::to_string(shown_->color.width()) + "x" +
                             std::to_string(shown_->color.height()) + "  frame " +
-                            milliseconds(shown_->milliseconds) + (depth_view_ ? "  [depth]" : "") +
-                            "   H: help");
+                            milliseconds(shown_->milliseconds) + (shown_->trace ? " (traced)" : "") +
+                            (viewName() != "colour" ? "  [" + viewName() + "]" : "") + "   H: help");
         hud.lines.push_back(shown_->request.stepLabel);
+        hud.lines.insert(hud.lines.end(), view_notes_.begin(), view_notes_.end());
     }
     if (!upToDate()) {
         const double seconds = worker_->runningSeconds();
@@ -147,6 +276,50 @@ void Viewer::composeWindow() {
         statistics.x = -4, statistics.y = below_hud;
         drawPanel(renderer_, statistics, scale);
     }
+    if (!shown_) return;
+    const uint32_t w = shown_->color.width(), h = shown_->color.height();
+    // The overdraw legend, bottom right: the ramp from 1 to the maximum.
+    if (view_ == ImageView::Overdraw && overdraw_max_ > 0) {
+        TextPanel legend;
+        legend.lines = {
+            "fragments per pixel", "",
+            overdraw_max_ == 1 ? "1 (white)" : "1\t" + std::to_string(overdraw_max_) + " (white)"};
+        const SDL_Point size = panelSize(legend, scale);
+        legend.x = -4, legend.y = window_height - size.y - 4;
+        drawPanel(renderer_, legend, scale);
+        const int left = panelLeft(renderer_, legend, scale) + kPanelPadding * scale;
+        const int top = legend.y + (kPanelPadding + kPanelLineHeight + 1) * scale;
+        const int bar = size.x - 2 * kPanelPadding * scale;
+        for (int i = 0; i < bar; ++i) {
+            const uint32_t count =
+                1 + uint32_t(uint64_t(overdraw_max_ - 1) * uint64_t(i) / uint64_t(std::max(1, bar - 1)));
+            const Rgb c = heatColour(count, overdraw_max_);
+            SDL_SetRenderDrawColor(renderer_, c[0], c[1], c[2], 255);
+            const SDL_Rect r{left + i, top, 1, (kPanelLineHeight - 3) * scale};
+            SDL_RenderFillRect(renderer_, &r);
+        }
+    }
+    if (!pixel_selected_ || uint32_t(pixel_x_) >= w || uint32_t(pixel_y_) >= h) return;
+    // The clicked pixel, outlined (at least 7 window pixels across however small it is scaled)...
+    const double sx = double(window_width) / w, sy = double(window_height) / h;
+    const int cx = int((pixel_x_ + 0.5) * sx), cy = int((pixel_y_ + 0.5) * sy);
+    const int rx = std::max(3, int(sx / 2) + 1), ry = std::max(3, int(sy / 2) + 1);
+    const SDL_Rect outer{cx - rx - 1, cy - ry - 1, 2 * rx + 3, 2 * ry + 3},
+        inner{cx - rx, cy - ry, 2 * rx + 1, 2 * ry + 1};
+    SDL_SetRenderDrawColor(renderer_, 0, 0, 0, 255);
+    SDL_RenderDrawRect(renderer_, &outer);
+    SDL_SetRenderDrawColor(renderer_, 255, 255, 0, 255);
+    SDL_RenderDrawRect(renderer_, &inner);
+    // ... and its history, bottom left.
+    TextPanel history;
+    if (shownHasHistory())
+        history.lines = compactPixelHistory(*shown_->trace, pixel_x_, pixel_y_, scale == 2 ? 12 : 8);
+    else
+        history.lines = {"pixel (" + std::to_string(pixel_x_) + ", " + std::to_string(pixel_y_) +
+                         "): tracing..."};
+    history.color = {200, 255, 220, 255};
+    history.x = 4, history.y = window_height - panelSize(history, scale).y - 4;
+    drawPanel(renderer_, history, scale);
 }
 
 void Viewer::saveScreenshot() {
@@ -164,8 +337,7 @@ void Viewer::saveScreenshot() {
     writePngRgba8(path, shown_->color.width(), shown_->color.height(), image_);
     screenshots_.push_back(path);
     say("screenshot " + path + " (" + std::to_string(shown_->color.width()) + "x" +
-        std::to_string(shown_->color.height()) + ", " + (depth_view_ ? "depth" : "colour") + ", " +
-        shown_->request.stepLabel + ")");
+        std::to_string(shown_->color.height()) + ", " + viewName() + ", " + shown_->request.stepLabel + ")");
     if (!options_.screenshotWindow) return;
     // The window as the user sees it, text included: composed, read back, then presented.
     composeWindow();
@@ -199,6 +371,13 @@ void Viewer::reportPixel(int windowX, int windowY) {
     std::snprintf(text, sizeof text, "pixel %lld,%lld: rgba %d %d %d %d, depth %.7g", (long long)x,
                   (long long)y, p[0], p[1], p[2], p[3], double(shown_->depth.load(uint32_t(x), uint32_t(y))));
     say(text);
+    // Its history: every fragment that reached it, from a traced render of the same frame.
+    pixel_selected_ = history_pending_ = true;
+    pixel_x_ = int32_t(x), pixel_y_ = int32_t(y);
+    if (shownHasHistory())
+        printHistory();
+    else
+        requestRender();
 }
 
 }  // namespace raster::tools
