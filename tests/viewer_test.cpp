@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
@@ -23,6 +24,7 @@
 #include "raster/image_io.hpp"
 #include "raster/scenes.hpp"
 #include "view/camera.hpp"
+#include "view/compare_views.hpp"
 #include "view/trace_views.hpp"
 
 namespace raster::tools {
@@ -155,16 +157,18 @@ TEST(ViewerScript, ParsesKeysAndPointerTokens) {
     EXPECT_EQ(a[21].y, 100);
     EXPECT_EQ(a[22].verb, Verb::Wait);
     EXPECT_TRUE(parseScript("").empty());
-    const std::vector<Action> views = parseScript("O x L g V c");
-    ASSERT_EQ(views.size(), 6u);
+    const std::vector<Action> views = parseScript("O x L g V c K j");
+    ASSERT_EQ(views.size(), 8u);
     EXPECT_EQ(views[0].verb, Verb::ToggleOverdraw);
     EXPECT_EQ(views[1].verb, Verb::ToggleNonFinite);
     EXPECT_EQ(views[2].verb, Verb::ToggleWireframe);
     EXPECT_EQ(views[3].verb, Verb::ToggleGsOutput);
     EXPECT_EQ(views[4].verb, Verb::NextStage);
     EXPECT_EQ(views[5].verb, Verb::ClosePixel);
+    EXPECT_EQ(views[6].verb, Verb::ToggleSolution);
+    EXPECT_EQ(views[7].verb, Verb::ToggleDifference);
     // Every key the help lists is bound, and no two bindings share a name.
-    for (const char* key : {"o", "x", "l", "g", "v", "c"}) {
+    for (const char* key : {"o", "x", "l", "g", "v", "c", "k", "j"}) {
         bool listed = false;
         for (const std::string& line : keyHelp())
             listed = listed || line.starts_with(std::string(1, char(std::toupper(key[0]))) + " ");
@@ -173,7 +177,7 @@ TEST(ViewerScript, ParsesKeysAndPointerTokens) {
 }
 
 TEST(ViewerScript, ErrorsNameTheToken) {
-    expectInvalidArgument([] { parseScript("N N K S"); }, {"unknown key 'K'"});
+    expectInvalidArgument([] { parseScript("N N Z S"); }, {"unknown key 'Z'"});
     expectInvalidArgument([] { parseScript("click:1"); }, {"'click:1'", "click:X,Y"});
     expectInvalidArgument([] { parseScript("click:1,2,3"); }, {"'click:1,2,3'"});
     expectInvalidArgument([] { parseScript("click:-1,2"); }, {"'click:-1,2'"});
@@ -201,6 +205,14 @@ TEST(ViewerCommand, BadOptionsNameTheCulprit) {
     expectInvalidArgument([] { runView({"particles", "--headless", "--script", "N ] Z"}); }, {"'Z'"});
     expectInvalidArgument([] { runView({"fog", "--fog", "thick"}); }, {"'thick'"});
     expectInvalidArgument([] { runView({"fog", "--screenshot-dir", ""}); }, {"--screenshot-dir"});
+    expectInvalidArgument(
+        [] {
+            runView({"particles", "--headless", "--solution", "smoke"});
+        },
+        {"unknown --solution 'smoke'", "reference", "particles, fog", ".png"});
+    expectInvalidArgument([] { runView({"particles", "--solution", "lab.jpg"}); }, {"'lab.jpg'"});
+    expectInvalidArgument([] { runView({"particles", "--solution", ""}); }, {"--solution takes"});
+    expectInvalidArgument([] { runView({"particles", "--solution"}); }, {"--solution needs a value"});
 }
 
 TEST(SceneCamera, DefaultIsTheScenesOwnAndBadOnesAreRefused) {
@@ -238,6 +250,7 @@ class ViewerTest : public ::testing::Test {
 
     ViewerOptions options(const std::string& script, const std::string& scene = "particles") const {
         ViewerOptions o;
+        o.solution = solution_;
         o.scene = scene;
         o.sceneOptions = {.width = kWidth, .height = kHeight, .count = kParticles, .cubes = 4};
         o.headless = true;
@@ -253,6 +266,7 @@ class ViewerTest : public ::testing::Test {
         last_messages_ = viewer.messages();
         if (viewer.shownFrame()) last_log_ = viewer.shownFrame()->drawLog;
         last_traced_ = viewer.shownFrame() && viewer.shownFrame()->trace;
+        last_solved_ = viewer.shownFrame() && viewer.shownFrame()->solution;
         last_notes_ = viewer.viewNotes();
         last_camera_ = viewer.camera();
         std::vector<ImageRgba8> shots;
@@ -264,10 +278,10 @@ class ViewerTest : public ::testing::Test {
     // The scene rendered straight through the library.
     static RenderTarget direct(const Context::StepLimit& limit, const std::string& scene = "particles",
                                std::optional<SceneCamera> camera = std::nullopt, uint32_t width = kWidth,
-                               uint32_t height = kHeight) {
+                               uint32_t height = kHeight, const ContextOptions& context = {}) {
         SceneOptions o{.width = width, .height = height, .count = kParticles, .cubes = 4};
         o.camera = camera;
-        Context ctx;
+        Context ctx(context);
         ctx.setStepLimit(limit);
         RenderTarget color(width, height);
         DepthTarget depth(width, height);
@@ -288,6 +302,8 @@ class ViewerTest : public ::testing::Test {
     SceneCamera last_camera_{};
     std::vector<std::string> last_notes_;
     bool last_traced_ = false;
+    std::string solution_;      // --solution of the next run
+    bool last_solved_ = false;  // the last frame shown came with a rendered solution
 };
 
 std::vector<char> fileBytes(const std::string& path) {
@@ -736,6 +752,122 @@ TEST_F(ViewerTest, ResizeRendersAtTheWindowsSize) {
     const std::vector<ImageRgba8> shots = run("N resize:200x100 S");
     ASSERT_EQ(shots.size(), 1u);
     expectSameImage(shots[0], direct({1}, "particles", std::nullopt, 200, 100), "200x100");
+}
+
+// ---- The solution views (--solution, K, J) -------------------------------------------------------------
+
+bool allBlack(const ImageRgba8& image) {
+    for (size_t i = 0; i < image.pixels.size(); i += 4)
+        if (image.pixels[i] || image.pixels[i + 1] || image.pixels[i + 2] || image.pixels[i + 3] != 255)
+            return false;
+    return true;
+}
+
+bool said(const std::vector<std::string>& messages, const std::string& line) {
+    return std::find(messages.begin(), messages.end(), line) != messages.end();
+}
+
+TEST_F(ViewerTest, SolutionOfTheSameSceneDiffersNowhere) {
+    solution_ = "particles";
+    const std::vector<ImageRgba8> shots = run("J S K S N J S");
+    ASSERT_EQ(shots.size(), 3u);
+    EXPECT_TRUE(allBlack(shots[0])) << "the difference of a scene from itself is black";
+    expectSameImage(shots[1], direct({}), "K: the solution scene's image");
+    EXPECT_TRUE(allBlack(shots[2])) << "stepped: both at draw 1";
+    const std::string line = "difference from scene particles: 0 of " + std::to_string(kWidth * kHeight) +
+                             " pixels differ (identical)";
+    EXPECT_EQ(last_notes_, std::vector<std::string>{line});
+    EXPECT_EQ(std::count(last_messages_.begin(), last_messages_.end(), line), 1)
+        << "printed when the figures change: the same for the whole frame and draw 1";
+    EXPECT_TRUE(last_solved_);
+}
+
+TEST_F(ViewerTest, ReferenceSolutionIsTheReferencePipelinesRender) {
+    solution_ = "reference";
+    // K, then J (from K straight to the difference), then stepped to draw 2's second particle.
+    const std::vector<ImageRgba8> shots = run("K S J S N ] ] S K S");
+    ASSERT_EQ(shots.size(), 4u);
+    const auto reference = [](const Context::StepLimit& limit) {
+        return direct(limit, "particles", std::nullopt, kWidth, kHeight, {.reference = true});
+    };
+    const RenderTarget fast = direct({}), exact = reference({});
+    expectSameImage(shots[0], exact, "K: a reference-mode render of the scene, bit for bit");
+    EXPECT_EQ(shots[1].pixels, differenceImage(fast.toRgba8(), exact.toRgba8(), kWidth, kHeight));
+    EXPECT_EQ(shots[2].pixels,
+              differenceImage(direct({2, 2}).toRgba8(), reference({2, 2}).toRgba8(), kWidth, kHeight));
+    expectSameImage(shots[3], reference({2, 2}), "K at draw 2, primitive 2");
+    // The count the HUD gives is a direct count of the pixels in which the two renders differ.
+    size_t differing = 0;
+    const uint8_t *a = fast.rgba8(), *b = exact.rgba8();
+    for (size_t i = 0; i < size_t(kWidth) * kHeight; ++i)
+        differing += !std::equal(a + 4 * i, a + 4 * i + 4, b + 4 * i);
+    const std::vector<std::string> expected = describeDifference(
+        compareImages(fast.toRgba8(), exact.toRgba8(), kWidth, kHeight), "the reference pipeline");
+    ASSERT_FALSE(expected.empty());
+    EXPECT_TRUE(expected[0].starts_with(
+        "difference from the reference pipeline: " + std::to_string(differing) + " of "))
+        << expected[0];
+    EXPECT_TRUE(said(last_messages_, expected[0])) << "the whole frame's difference is printed";
+    // The solution is rendered only for K and J.
+    run("S");
+    EXPECT_FALSE(last_solved_);
+    run("K K S");
+    EXPECT_TRUE(last_solved_) << "K K shows the frame K asked for";
+}
+
+TEST_F(ViewerTest, SolutionKeysWithoutASolutionSaySo) {
+    const std::vector<ImageRgba8> shots = run("K S K J");
+    ASSERT_EQ(shots.size(), 1u);
+    expectSameImage(shots[0], direct({}), "K without a solution shows the frame");
+    EXPECT_EQ(std::count(last_messages_.begin(), last_messages_.end(), std::string(kNoSolution)), 2);
+    EXPECT_EQ(last_notes_, std::vector<std::string>{kNoSolution});
+    EXPECT_FALSE(last_solved_);
+}
+
+TEST_F(ViewerTest, PngSolutionsAndTheirSize) {
+    std::filesystem::create_directories(dir_);
+    const RenderTarget draw1 = direct({1});
+    solution_ = (dir_ / "draw1.png").string();
+    draw1.savePng(solution_);
+    const std::vector<ImageRgba8> shots = run("N J S 0 S K S click:160,90");
+    ASSERT_EQ(shots.size(), 3u);
+    EXPECT_TRUE(allBlack(shots[0])) << "draw 1 against its own PNG";
+    EXPECT_EQ(shots[1].pixels, differenceImage(direct({}).toRgba8(), draw1.toRgba8(), kWidth, kHeight));
+    expectSameImage(shots[2], draw1, "K: the PNG");
+    EXPECT_FALSE(last_solved_) << "a PNG needs no render";
+    const RenderTarget whole = direct({});
+    const uint8_t* p = draw1.rgba8() + 4 * (size_t(90) * kWidth + 160);
+    const uint8_t* q = whole.rgba8() + 4 * (size_t(90) * kWidth + 160);
+    int largest = 0;
+    for (int c = 0; c < 4; ++c) largest = std::max(largest, std::abs(int(p[c]) - int(q[c])));
+    EXPECT_GT(largest, 0) << "a particle is in front of the occluder there";
+    EXPECT_TRUE(said(last_messages_, "solution pixel 160,90: rgba " + std::to_string(p[0]) + " " +
+                                         std::to_string(p[1]) + " " + std::to_string(p[2]) + " " +
+                                         std::to_string(p[3]) + ", largest difference " +
+                                         std::to_string(largest) + "/255"));
+    // Another size: said, not compared; K shows it scaled.
+    const RenderTarget small = direct({1}, "particles", std::nullopt, 32, 18);
+    solution_ = (dir_ / "small.png").string();
+    small.savePng(solution_);
+    const std::vector<ImageRgba8> sized = run("J S K S");
+    ASSERT_EQ(sized.size(), 2u);
+    expectSameImage(sized[0], direct({}), "J: the frame, nothing to compare");
+    EXPECT_EQ(sized[1].pixels, scaleNearest(small.toRgba8(), 32, 18, kWidth, kHeight));
+    ASSERT_EQ(last_notes_.size(), 1u);
+    EXPECT_NE(last_notes_[0].find("small.png is 32x18, the frame 320x180"), std::string::npos)
+        << last_notes_[0];
+    EXPECT_NE(last_notes_[0].find("--size 32x18"), std::string::npos) << last_notes_[0];
+    // A PNG that is not there fails before a window opens, naming it.
+    solution_ = (dir_ / "missing.png").string();
+    try {
+        Viewer viewer(options("K"));
+        ADD_FAILURE() << "a missing PNG was accepted";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ErrorCode::BadFile);
+        EXPECT_NE(std::string(e.what()).find("missing.png"), std::string::npos) << e.what();
+    }
+    solution_ = "smoke";
+    expectInvalidArgument([&] { Viewer viewer(options("K")); }, {"unknown --solution 'smoke'"});
 }
 
 }  // namespace

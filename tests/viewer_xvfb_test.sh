@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # raster view in a real window: SDL's x11 driver on a virtual X server (xvfb-run). Steps through the
 # particles scene, clicks pixels (each prints its colour and, from a traced render, its history),
-# takes screenshots of the frame, the current primitive's wireframe and the overdraw view, then runs
+# takes screenshots of the frame, the current primitive's wireframe, the overdraw view, and the
+# reference pipeline's image and difference (--solution reference, K and J), then runs
 # the same script headless; the screenshots and everything printed about the clicks must be the
 # same, byte for byte. Exit 77 (CTest: skipped) only when xvfb-run is missing.
 #   bash tests/viewer_xvfb_test.sh build/bin/raster
@@ -18,13 +19,13 @@ fail() {
   exit 1
 }
 
-script="N ] ] ] [ P N 0 N ] click:160,90 S 0 click:160,90 click:20,20 S C N ] ] ] L S L O S O Esc"
+script="N ] ] ] [ P N 0 N ] click:160,90 S 0 click:160,90 click:20,20 S C N ] ] ] L S L O S O 0 K S K J S J Esc"
 # The window run must not inherit a headless driver from the caller's environment.
 SDL_VIDEODRIVER=x11 timeout 50 xvfb-run -a -s "-screen 0 640x480x24" \
   "$raster" view particles --size 320x180 --script "$script" --screenshot-dir "$dir/window" \
-  --screenshot-window >"$dir/window.txt"
+  --screenshot-window --solution reference >"$dir/window.txt"
 env -u SDL_VIDEODRIVER timeout 50 "$raster" view particles --headless --size 320x180 --script "$script" \
-  --screenshot-dir "$dir/headless" >"$dir/headless.txt"
+  --screenshot-dir "$dir/headless" --solution reference >"$dir/headless.txt"
 cat "$dir/window.txt"
 
 grep -q "video driver x11" "$dir/window.txt" || fail "the window run did not use SDL's x11 driver"
@@ -36,7 +37,9 @@ diff <(printed "$dir/window.txt") <(printed "$dir/headless.txt") || fail "click 
 [[ $(grep -c '^pixel ([0-9]*, [0-9]*): [0-9]* fragment' "$dir/window.txt") == 3 ]] ||
   fail "expected three pixel histories"
 grep -q '^pixel (160, 90): 2 fragments$' "$dir/window.txt" || fail "pixel 160,90 at draw 2 primitive 1: the occluder and a particle"
-for shot in particles-0001.png particles-0002.png particles-0003.png particles-0004.png; do
+grep -q '^difference from the reference pipeline: [0-9]* of 57600 pixels differ' "$dir/window.txt" ||
+  fail "J printed no difference from the reference pipeline"
+for shot in particles-000{1,2,3,4,5,6}.png; do
   [[ -s $dir/window/$shot ]] || fail "the window run wrote no $shot"
   cmp "$dir/window/$shot" "$dir/headless/$shot" || fail "$shot differs between the window and headless"
 done

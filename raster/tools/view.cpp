@@ -13,12 +13,16 @@ constexpr const char* kUsage =
     "usage: raster view particles|fog [--size WxH] [--count N] [--cubes M] [--fog constant|height]\n"
     "                   [--threads T] [--reference] [--headless] [--script \"N N ] S\"]\n"
     "                   [--screenshot-dir D] [--screenshot-window]\n"
+    "                   [--solution reference|<scene>|<file.png>]\n"
     "  Opens a window on the scene's framebuffer (default 1280x720). --script runs space-separated\n"
     "  keys first (also click:X,Y  drag:X0,Y0,X1,Y1  wheel:N  resize:WxH  wait); --headless runs it\n"
     "  on SDL's offscreen driver and exits. Screenshots (S, F12) save the framebuffer to\n"
     "  D/<scene>-NNNN.png (D defaults to .); --screenshot-window also saves the window, text included.\n"
     "  A click prints the pixel's colour and depth, then its history (every fragment, from a traced\n"
     "  render); O, X, L, G and V show views of the pipeline trace (frames are traced only for them).\n"
+    "  --solution: what K shows and J compares the frame with - reference (this scene through the\n"
+    "  reference pipeline), another scene (e.g. a lab's solution) at the same size, camera and step,\n"
+    "  or a PNG of the frame's size; rendered only while K or J is on.\n"
     "keys:\n";
 
 // "WxH" → width, height, each 1..RenderTarget::kMaxSize.
@@ -69,7 +73,11 @@ int view(int argc, char** argv) {
             options.screenshotDir = args.value(a);
         else if (a == "--screenshot-window")
             options.screenshotWindow = true;
-        else if (a == "--fog") {
+        else if (a == "--solution") {
+            options.solution = args.value(a);
+            RASTER_REQUIRE(!options.solution.empty(), InvalidArgument,
+                           "--solution takes reference, a scene or a .png file, not ''");
+        } else if (a == "--fog") {
             const std::string_view f = args.value(a);
             RASTER_REQUIRE(f == "constant" || f == "height", InvalidArgument,
                            "--fog takes constant or height, not '" + std::string(f) + "'");
@@ -84,7 +92,8 @@ int view(int argc, char** argv) {
     }
     RASTER_REQUIRE(!options.screenshotDir.empty(), InvalidArgument,
                    "--screenshot-dir needs a directory, not ''");
-    defaultCamera(options.scene);  // an unknown scene fails here, before a window opens
+    defaultCamera(options.scene);     // an unknown scene fails here, before a window opens
+    parseSolution(options.solution);  // so does a bad --solution
     Viewer viewer(std::move(options));
     viewer.run();
     return 0;

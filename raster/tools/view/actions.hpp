@@ -19,6 +19,8 @@ enum class Verb {
     ToggleDepth,        // D
     ToggleOverdraw,     // O: overdraw heat map
     ToggleNonFinite,    // X: NaN/Inf shader outputs over the dimmed image
+    ToggleSolution,     // K: the solution's image (--solution)
+    ToggleDifference,   // J: the difference between the frame and the solution
     ToggleWireframe,    // L: wireframe of the current primitive
     ToggleGsOutput,     // G: the geometry shader's output of the current draw
     NextStage,          // V: VS points → GS output → set-up primitives → final image

@@ -12,11 +12,21 @@ bool sameScene(const SceneOptions& a, const SceneOptions& b) {
 
 }  // namespace
 
+Scene& RenderWorker::CachedScene::get(const std::string& name, const SceneOptions& wanted) {
+    if (!scene || !sameScene(options, wanted)) {
+        scene.reset();  // first: a big scene's buffers are not held twice
+        scene = makeScene(name, wanted);
+        options = wanted;
+    }
+    return *scene;
+}
+
 RenderWorker::RenderWorker(std::string sceneName, const ContextOptions& options,
-                           std::function<void()> finished)
+                           std::function<void()> finished, std::optional<SolutionRender> solution)
     : scene_name_(std::move(sceneName)),
       context_options_(options),
       finished_callback_(std::move(finished)),
+      solution_(std::move(solution)),
       thread_([this] { loop(); }) {}
 
 RenderWorker::~RenderWorker() {
@@ -52,8 +62,13 @@ double RenderWorker::runningSeconds() const {
 }
 
 void RenderWorker::loop() {
-    // The Context (and its thread pool) lives and dies on this thread.
+    // The Contexts (and their thread pools) live and die on this thread. A solution under other
+    // options (the reference pipeline) gets its own, once asked for; another scene shares this one.
     Context context(context_options_);
+    std::unique_ptr<Context> solution_context;
+    const bool own_solution_context =
+        solution_ && (solution_->context.reference != context_options_.reference ||
+                      solution_->context.threads != context_options_.threads);
     for (;;) {
         uint64_t id;
         RenderRequest request;
@@ -68,6 +83,11 @@ void RenderWorker::loop() {
             running_since_ = std::chrono::steady_clock::now();
         }
         std::shared_ptr<RenderedFrame> frame = render(context, id, std::move(request));
+        if (frame->request.solution && solution_ && frame->error.empty()) {
+            if (own_solution_context && !solution_context)
+                solution_context = std::make_unique<Context>(solution_->context);
+            renderSolution(own_solution_context ? *solution_context : context, *frame);
+        }
         {
             std::lock_guard lock(mutex_);
             running_ = false;
@@ -81,11 +101,7 @@ std::shared_ptr<RenderedFrame> RenderWorker::render(Context& context, uint64_t i
     auto frame = std::make_shared<RenderedFrame>();
     frame->id = id;
     try {
-        if (!scene_ || !sameScene(scene_options_, request.scene)) {
-            scene_.reset();
-            scene_ = makeScene(scene_name_, request.scene);
-            scene_options_ = request.scene;
-        }
+        Scene& scene = scene_.get(scene_name_, request.scene);
         frame->color = RenderTarget(request.scene.width, request.scene.height);
         frame->depth = DepthTarget(request.scene.width, request.scene.height);
         context.resetFrameStatistics();
@@ -101,7 +117,7 @@ std::shared_ptr<RenderedFrame> RenderWorker::render(Context& context, uint64_t i
         context.setTrace(frame->trace.get());
         const auto t0 = std::chrono::steady_clock::now();
         try {
-            scene_->render(context, frame->color, frame->depth);
+            scene.render(context, frame->color, frame->depth);
         } catch (...) {
             context.setTrace(nullptr);
             throw;
@@ -118,6 +134,27 @@ std::shared_ptr<RenderedFrame> RenderWorker::render(Context& context, uint64_t i
     }
     frame->request = std::move(request);
     return frame;
+}
+
+void RenderWorker::renderSolution(Context& context, RenderedFrame& frame) {
+    try {
+        SceneOptions options = frame.request.scene;
+        // The frame's camera, also when it is its scene's own: another scene's own may differ.
+        if (!options.camera) options.camera = defaultCamera(scene_name_);
+        Scene& scene = solution_scene_.get(solution_->scene, options);
+        RenderTarget color(options.width, options.height);
+        DepthTarget depth(options.width, options.height);
+        context.setTrace(nullptr);
+        context.resetFrameStatistics();  // step limits count draws from here
+        context.setStepLimit(frame.request.limit);
+        const auto t0 = std::chrono::steady_clock::now();
+        scene.render(context, color, depth);
+        frame.solutionMilliseconds =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        frame.solution = std::move(color);
+    } catch (const std::exception& e) {
+        frame.solutionError = e.what();
+    }
 }
 
 }  // namespace raster::tools

@@ -4,7 +4,9 @@
 // what is shown, so it is shown until the latest one arrives.
 //
 // A request may ask for the pipeline trace (raster/include/raster/trace.hpp), which the trace views
-// need; frames nobody asked to trace render untraced, at full speed.
+// need; frames nobody asked to trace render untraced, at full speed. It may also ask for the
+// solution (the viewer's --solution): a second scene rendered beside the frame, at the same size,
+// camera and step, which the viewer compares the frame with.
 #pragma once
 
 #include <atomic>
@@ -14,6 +16,7 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -42,11 +45,19 @@ struct TraceRequest {
 // the default particles scene's 10000 particles' 40000 GS output vertices, with room to spare.
 constexpr uint32_t kViewerGeometryRecords = 1u << 17;
 
+// The scene a worker renders as the solution: another scene, or the same one under other context
+// options (the reference pipeline).
+struct SolutionRender {
+    std::string scene;
+    ContextOptions context;
+};
+
 struct RenderRequest {
     SceneOptions scene;  // only size and camera may change between requests of one worker
     Context::StepLimit limit;
     std::string stepLabel;  // what the overlay says about the step position
     TraceRequest trace;
+    bool solution = false;  // also render the worker's SolutionRender (if it has one)
 };
 
 struct RenderedFrame {
@@ -61,12 +72,18 @@ struct RenderedFrame {
     std::string error;             // what a raster::Error said, if the render threw
     Viewport viewport;             // the context's viewport after the scene's render (for clip → screen)
     std::unique_ptr<Trace> trace;  // when request.trace.any()
+    // When request.solution: the solution scene at the frame's size, camera (the frame's scene's
+    // own when request.scene.camera is unset) and step limit, never traced.
+    std::optional<RenderTarget> solution;
+    double solutionMilliseconds = 0;
+    std::string solutionError;  // what its render threw; the frame itself is still good
 };
 
 class RenderWorker {
   public:
     // `finished` is called on the worker thread after each render (e.g. to wake an event loop).
-    RenderWorker(std::string sceneName, const ContextOptions& options, std::function<void()> finished);
+    RenderWorker(std::string sceneName, const ContextOptions& options, std::function<void()> finished,
+                 std::optional<SolutionRender> solution = std::nullopt);
     ~RenderWorker();
     RenderWorker(const RenderWorker&) = delete;
     RenderWorker& operator=(const RenderWorker&) = delete;
@@ -79,15 +96,23 @@ class RenderWorker {
     double runningSeconds() const;
 
   private:
+    // A scene kept between renders, rebuilt when the size or the camera changes.
+    struct CachedScene {
+        std::unique_ptr<Scene> scene;
+        SceneOptions options;
+        Scene& get(const std::string& name, const SceneOptions& wanted);
+    };
+
     void loop();
     std::shared_ptr<RenderedFrame> render(Context& context, uint64_t id, RenderRequest request);
+    void renderSolution(Context& context, RenderedFrame& frame);
 
     const std::string scene_name_;
     const ContextOptions context_options_;
     const std::function<void()> finished_callback_;
-    // Worker thread only: the scene is rebuilt when the size or the camera changes.
-    std::unique_ptr<Scene> scene_;
-    SceneOptions scene_options_;
+    const std::optional<SolutionRender> solution_;
+    // Worker thread only.
+    CachedScene scene_, solution_scene_;
 
     mutable std::mutex mutex_;
     std::condition_variable wake_;

@@ -57,6 +57,9 @@ std::string keyName(const SDL_Keysym& key, bool fly) {
 }  // namespace
 
 Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
+    // A bad --solution fails here, before SDL starts.
+    solution_ = parseSolution(options_.solution);
+    if (solution_.kind == SolutionSource::Kind::Image) solution_image_ = readImageRgba8(solution_.name);
     camera_ = options_.sceneOptions.camera.value_or(defaultCamera(options_.scene));
     camera_moved_ = options_.sceneOptions.camera.has_value();
     width_ = options_.sceneOptions.width;
@@ -86,11 +89,19 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
         info.name);
     wake_event_ = SDL_RegisterEvents(1);
     const uint32_t wake = wake_event_;
-    worker_ = std::make_unique<RenderWorker>(options_.scene, options_.context, [wake] {
-        SDL_Event e{};
-        e.type = wake;
-        SDL_PushEvent(&e);  // thread-safe: wakes the event loop when a frame is ready
-    });
+    std::optional<SolutionRender> solution;
+    if (solution_.kind == SolutionSource::Kind::Reference)
+        solution = SolutionRender{options_.scene, {options_.context.threads, true}};
+    if (solution_.kind == SolutionSource::Kind::Scene)
+        solution = SolutionRender{solution_.name, options_.context};
+    worker_ = std::make_unique<RenderWorker>(
+        options_.scene, options_.context,
+        [wake] {
+            SDL_Event e{};
+            e.type = wake;
+            SDL_PushEvent(&e);  // thread-safe: wakes the event loop when a frame is ready
+        },
+        std::move(solution));
 }
 
 Viewer::~Viewer() {
@@ -212,11 +223,19 @@ bool Viewer::perform(const Action& a) {
             return true;
         case Verb::ToggleDepth:
         case Verb::ToggleOverdraw:
-        case Verb::ToggleNonFinite: {
-            const ImageView v = a.verb == Verb::ToggleDepth      ? ImageView::Depth
-                                : a.verb == Verb::ToggleOverdraw ? ImageView::Overdraw
-                                                                 : ImageView::NonFinite;
+        case Verb::ToggleNonFinite:
+        case Verb::ToggleSolution:
+        case Verb::ToggleDifference: {
+            const ImageView v = a.verb == Verb::ToggleDepth       ? ImageView::Depth
+                                : a.verb == Verb::ToggleOverdraw  ? ImageView::Overdraw
+                                : a.verb == Verb::ToggleNonFinite ? ImageView::NonFinite
+                                : a.verb == Verb::ToggleSolution  ? ImageView::Solution
+                                                                  : ImageView::Difference;
             view_ = view_ == v ? ImageView::Colour : v;
+            // The view still shows (the frame, with the same words in the HUD), so K is seen to work.
+            if (solution_.kind == SolutionSource::Kind::None &&
+                (view_ == ImageView::Solution || view_ == ImageView::Difference))
+                say(kNoSolution);
             viewsChanged();
             return true;
         }
@@ -284,6 +303,7 @@ void Viewer::requestRender() {
     request.limit = cursor_.limit();
     request.stepLabel = cursor_.label();
     request.trace = requested_trace_ = traceNeeds();
+    request.solution = requested_solution_ = solutionNeeded();
     requested_id_ = worker_->request(std::move(request));
 }
 
@@ -296,11 +316,21 @@ TraceRequest Viewer::traceNeeds() const {
     return t;
 }
 
+bool Viewer::solutionNeeded() const {
+    const bool rendered =
+        solution_.kind == SolutionSource::Kind::Reference || solution_.kind == SolutionSource::Kind::Scene;
+    return rendered && (view_ == ImageView::Solution || view_ == ImageView::Difference);
+}
+
 void Viewer::viewsChanged() {
     const TraceRequest need = traceNeeds();
+    const bool need_solution = solutionNeeded();
     // Views switched off, or on with what the shown (or the coming) frame has: no new render.
-    const bool coming = !upToDate() && requested_trace_.covers(need);
-    if (!coming && (!shown_ || !shown_->request.trace.covers(need)))
+    const bool coming =
+        !upToDate() && requested_trace_.covers(need) && (requested_solution_ || !need_solution);
+    const bool shown_has =
+        shown_ && shown_->request.trace.covers(need) && (shown_->request.solution || !need_solution);
+    if (!coming && !shown_has)
         requestRender();
     else
         uploadImage();
@@ -342,6 +372,12 @@ void Viewer::show(std::shared_ptr<RenderedFrame> frame) {
         return;  // the last good frame stays
     }
     render_error_.clear();
+    // The frame is good; K and J say what became of its solution.
+    if (!frame->solutionError.empty()) {
+        const std::string what = "rendering " + solutionLabel(solution_) + " failed: " + frame->solutionError;
+        if (options_.headless) throw Error(ErrorCode::InvalidState, what);
+        std::fprintf(stderr, "raster view: %s\n", what.c_str());
+    }
     const Context::StepLimit& limit = frame->request.limit;
     const bool whole = limit.draws == UINT32_MAX && limit.primitives == UINT64_MAX;
     if (whole) frame->request.stepLabel = "whole frame, " + std::to_string(frame->drawCount) + " draws";

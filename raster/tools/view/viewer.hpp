@@ -9,6 +9,11 @@
 // The trace views (overdraw, NaN/Inf, the wireframes, a clicked pixel's history) render the frame
 // again with the pipeline trace on, on the render worker like any frame; frames no view needs a
 // trace for render untraced.
+//
+// With --solution, K shows the solution's image and J the difference between the frame and it
+// (compare_views.hpp): the reference pipeline's render of the same scene (the fast path's error),
+// another scene's (a lab's solution), or a PNG. Rendered solutions come from the render worker with
+// the frame, at its size, camera and step, and only while a solution view is shown.
 #pragma once
 
 #include <deque>
@@ -17,6 +22,8 @@
 #include <vector>
 
 #include "actions.hpp"
+#include "compare_views.hpp"
+#include "raster/image_io.hpp"
 #include "render_worker.hpp"
 #include "step_cursor.hpp"
 
@@ -27,8 +34,8 @@ union SDL_Event;
 
 namespace raster::tools {
 
-// The image the window shows (D, O, X).
-enum class ImageView { Colour, Depth, Overdraw, NonFinite };
+// The image the window shows (D, O, X, K, J).
+enum class ImageView { Colour, Depth, Overdraw, NonFinite, Solution, Difference };
 // The pipeline stage drawn over the dimmed image (V cycles, G toggles the GS output).
 enum class Stage { Final, Vertices, GsOutput, Primitives };
 
@@ -42,12 +49,19 @@ struct ViewerOptions {
     std::vector<Action> script;
     std::string screenshotDir = ".";
     bool screenshotWindow = false;  // also save the window, text included, as <shot>-window.png
+    // What K shows and J compares with: "reference" (this scene through the reference pipeline),
+    // a scene of sceneNames(), or a .png file; empty: none (parseSolution).
+    std::string solution;
 };
+
+// What K and J say without a solution.
+constexpr const char* kNoSolution = "no solution: start with --solution reference|<scene>|<file.png>";
 
 class Viewer {
   public:
-    // Opens the window. Throws Error(InvalidArgument) for an unknown scene and Error(InvalidState)
-    // if SDL cannot open a window.
+    // Opens the window. Throws Error(InvalidArgument) for an unknown scene or --solution,
+    // Error(BadFile) for a solution PNG that cannot be read, and Error(InvalidState) if SDL cannot
+    // open a window.
     explicit Viewer(ViewerOptions options);
     ~Viewer();
     Viewer(const Viewer&) = delete;
@@ -90,6 +104,14 @@ class Viewer {
     bool shownHasHistory() const;
     void printHistory();
     void composeViews();  // the trace views into image_ (uploadImage's second half)
+    // What the solution views need rendered: the solution, unless there is none or it is a PNG.
+    bool solutionNeeded() const;
+    // K and J: the solution's image or the difference into image_, their notes (viewer_solution.cpp).
+    void composeSolutionViews();
+    // The solution's RGBA8 at the shown frame's size, or null with `why` saying what is missing.
+    const std::vector<uint8_t>* solutionPixels(std::vector<uint8_t>& storage, std::string& why) const;
+    // A click in K or J: the solution's pixel and its difference from the frame's (`frame`: RGBA8).
+    void reportSolutionPixel(uint32_t x, uint32_t y, const uint8_t* frame);
     std::string viewName() const;
     void say(const std::string& line);
 
@@ -120,6 +142,10 @@ class Viewer {
     bool pixel_selected_ = false, history_pending_ = false;
     int32_t pixel_x_ = 0, pixel_y_ = 0;
     TraceRequest requested_trace_;
+    SolutionSource solution_;
+    ImageRgba8 solution_image_;  // Kind::Image: the PNG, read once
+    bool requested_solution_ = false;
+    std::vector<std::string> difference_said_;  // the difference's lines printed last
     bool left_down_ = false, dragging_ = false;
     int press_x_ = 0, press_y_ = 0, last_x_ = 0, last_y_ = 0;
     int screenshot_counter_ = 0;

@@ -106,10 +106,12 @@ void Viewer::uploadImage() {
 }
 
 std::string Viewer::viewName() const {
-    std::string name = view_ == ImageView::Depth       ? "depth"
-                       : view_ == ImageView::Overdraw  ? "overdraw"
-                       : view_ == ImageView::NonFinite ? "NaN/Inf"
-                                                       : "colour";
+    std::string name = view_ == ImageView::Depth        ? "depth"
+                       : view_ == ImageView::Overdraw   ? "overdraw"
+                       : view_ == ImageView::NonFinite  ? "NaN/Inf"
+                       : view_ == ImageView::Solution   ? "solution"
+                       : view_ == ImageView::Difference ? "difference"
+                                                        : "colour";
     if (stage_ == Stage::Vertices) name += " + VS output";
     if (stage_ == Stage::GsOutput) name += " + GS output";
     if (stage_ == Stage::Primitives) name += " + set-up primitives";
@@ -120,6 +122,7 @@ std::string Viewer::viewName() const {
 void Viewer::composeViews() {
     view_notes_.clear();
     overdraw_max_ = 0;
+    composeSolutionViews();
     const RenderedFrame& f = *shown_;
     const uint32_t w = f.color.width(), h = f.color.height();
     const Trace* trace = f.trace.get();
@@ -371,6 +374,8 @@ void Viewer::reportPixel(int windowX, int windowY) {
     std::snprintf(text, sizeof text, "pixel %lld,%lld: rgba %d %d %d %d, depth %.7g", (long long)x,
                   (long long)y, p[0], p[1], p[2], p[3], double(shown_->depth.load(uint32_t(x), uint32_t(y))));
     say(text);
+    if (view_ == ImageView::Solution || view_ == ImageView::Difference)
+        reportSolutionPixel(uint32_t(x), uint32_t(y), p);
     // Its history: every fragment that reached it, from a traced render of the same frame.
     pixel_selected_ = history_pending_ = true;
     pixel_x_ = int32_t(x), pixel_y_ = int32_t(y);
