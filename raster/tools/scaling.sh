@@ -17,7 +17,7 @@ row() {  # label, then bench arguments
   inv=$(sed -n 's/.*ps_invocations_per_frame=\([0-9]*\).*/\1/p' <<<"$out")
   rss=$(sed -n 's/.*peak_rss_mb=\([0-9.]*\).*/\1/p' <<<"$out")
   awk -v l="$label" -v ms="$ms" -v inv="$inv" -v rss="$rss" \
-    'BEGIN { printf "| %s | %.2f | %.2f M | %.2f | %.0f |\n", l, ms, inv / 1e6, inv > 0 ? ms * 1e6 / inv : 0, rss }'
+    'BEGIN { printf "| %s | %.2f | %.2f M | %.2f | %.0f |\n", l, ms, inv / 1e6, (inv > 0 ? ms * 1e6 / inv : 0), rss }'
 }
 
 echo "### particles, 1280×720, against count"
