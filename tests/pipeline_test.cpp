@@ -5,11 +5,13 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <atomic>
 #include <cstdlib>
 #include <functional>
 #include <initializer_list>
 #include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "raster/check.hpp"
@@ -256,9 +258,11 @@ struct Frame {
     DepthTarget depth;
 };
 
-Frame renderScene(std::string_view name, const SceneOptions& options, ContextOptions contextOptions) {
+Frame renderScene(std::string_view name, const SceneOptions& options, ContextOptions contextOptions,
+                  RenderProgress* progress = nullptr) {
     auto scene = makeScene(name, options);
     Context ctx(contextOptions);
+    ctx.setProgress(progress);
     Frame f{RenderTarget(options.width, options.height), DepthTarget(options.width, options.height)};
     scene->render(ctx, f.color, f.depth);
     return f;
@@ -478,6 +482,123 @@ TEST(PipelineStatisticsTest, ToStringNamesEveryCounter) {
     EXPECT_NE(text.find("gsPrimitives 12345\n"), std::string::npos);
     EXPECT_NE(text.find("fragmentsBlendNoOp 678\n"), std::string::npos);
     EXPECT_NE(text.find("sortsAvoided 0\n"), std::string::npos);
+}
+
+// ---- Progress ------------------------------------------------------------------------------------------
+
+void expectProgress(const RenderProgress& progress, uint32_t started, uint32_t finished, uint32_t tilesInDraw,
+                    uint32_t tilesFinished, const char* when) {
+    const RenderProgress::Snapshot s = progress.snapshot();
+    EXPECT_EQ(s.drawsStarted, started) << when;
+    EXPECT_EQ(s.drawsFinished, finished) << when;
+    EXPECT_EQ(s.tilesInDraw, tilesInDraw) << when;
+    EXPECT_EQ(s.tilesFinished, tilesFinished) << when;
+}
+
+TEST(PipelineProgress, CountsDrawsAndTheLastDrawsTiles) {
+    Fixture f({}, 200, 100);  // 4×2 tiles of 64 pixels
+    RenderProgress progress;
+    expectProgress(progress, 0, 0, 0, 0, "new");
+    f.drawColumns(kRed, 0, 200, 0.5f);
+    expectProgress(progress, 0, 0, 0, 0, "progress off: nothing counted");
+
+    f.ctx.setProgress(&progress);
+    EXPECT_EQ(f.ctx.progress(), &progress);
+    f.drawColumns(kRed, 0, 200, 0.5f);
+    expectProgress(progress, 1, 1, 8, 8, "a whole-target draw");
+    f.ctx.draw(VsTransform{}, PsConstant{kGreen}, 0);
+    expectProgress(progress, 2, 2, 0, 0, "an empty draw rasterises no tile");
+    f.ctx.setViewport({0, 0, 64, 64, 0, 1});
+    f.drawColumns(kGreen, 0, 200, 0.5f);
+    expectProgress(progress, 3, 3, 1, 1, "a draw in one tile's viewport");
+    expectError([&] { f.ctx.draw(VsTransform{}, PsConstant{kGreen}, 600); }, ErrorCode::OutOfRange, {});
+    expectProgress(progress, 3, 3, 1, 1, "a draw refused by validation does not start");
+
+    f.ctx.resetFrameStatistics();
+    f.ctx.setStepLimit({1, 2});  // draw 0 runs one of its two triangles, draw 1 is skipped
+    f.drawColumns(kRed, 0, 200, 0.5f);
+    expectProgress(progress, 4, 4, 1, 1, "a stepped draw still rasterises its tiles");
+    f.drawColumns(kRed, 0, 200, 0.5f);
+    expectProgress(progress, 5, 5, 0, 0, "a skipped draw is finished at once");
+
+    progress.reset();
+    expectProgress(progress, 0, 0, 0, 0, "reset");
+    f.ctx.setProgress(nullptr);
+    f.drawColumns(kRed, 0, 200, 0.5f);
+    expectProgress(progress, 0, 0, 0, 0, "progress off again");
+}
+
+TEST(PipelineProgress, FrameCountsItsDrawsAndTheLastDrawsTiles) {
+    RenderProgress progress;
+    renderScene("particles", {.width = 320, .height = 180, .count = 500}, {}, &progress);
+    // The occluder and the particles; 320×180 is 5×3 tiles.
+    expectProgress(progress, 2, 2, 15, 15, "particles");
+}
+
+TEST(PipelineProgress, GrowsMonotonicallyWhileAFrameRenders) {
+    // Long enough for many samples mid-draw (about a quarter of a second), short enough for a test.
+    const SceneOptions options{.width = 1280, .height = 720, .count = 60000};
+    auto scene = makeScene("particles", options);
+    Context ctx(ContextOptions{.threads = 2});
+    RenderTarget color(options.width, options.height);
+    DepthTarget depth(options.width, options.height);
+    RenderProgress progress;
+    ctx.setProgress(&progress);
+
+    std::atomic<bool> done{false};
+    std::vector<std::string> failures;
+    size_t samples = 0, mid_draw = 0;
+    std::thread sampler([&] {
+        RenderProgress::Snapshot last;
+        while (!done.load(std::memory_order_acquire)) {
+            const RenderProgress::Snapshot s = progress.snapshot();
+            ++samples;
+            const auto fail = [&](const std::string& what) {
+                if (failures.size() < 10)
+                    failures.push_back(what + ": started " + std::to_string(s.drawsStarted) + " finished " +
+                                       std::to_string(s.drawsFinished) + " tiles " +
+                                       std::to_string(s.tilesFinished) + "/" + std::to_string(s.tilesInDraw) +
+                                       " after started " + std::to_string(last.drawsStarted) + " tiles " +
+                                       std::to_string(last.tilesFinished) + "/" +
+                                       std::to_string(last.tilesInDraw));
+            };
+            if (s.drawsStarted < last.drawsStarted) fail("drawsStarted went back");
+            if (s.drawsFinished < last.drawsFinished) fail("drawsFinished went back");
+            if (s.drawsFinished > s.drawsStarted || s.drawsStarted > s.drawsFinished + 1)
+                fail("one draw at a time");
+            if (s.tilesFinished > s.tilesInDraw) fail("more tiles finished than in the draw");
+            if (s.drawsStarted == last.drawsStarted &&
+                (s.tilesFinished < last.tilesFinished || s.tilesInDraw < last.tilesInDraw))
+                fail("tiles went back within a draw");
+            if (s.drawRunning() && s.tilesFinished > 0 && s.tilesFinished < s.tilesInDraw) ++mid_draw;
+            last = s;
+        }
+    });
+    scene->render(ctx, color, depth);
+    done.store(true, std::memory_order_release);
+    sampler.join();
+    for (const std::string& failure : failures) ADD_FAILURE() << failure;
+    EXPECT_GT(samples, 100u);
+    EXPECT_GT(mid_draw, 0u) << "no sample saw a draw part way through its tiles";
+    expectProgress(progress, 2, 2, 20 * 12, 20 * 12, "after the frame");
+}
+
+TEST(PipelineProgress, ImagesAreTheSameWithProgressOnAndOff) {
+    for (const unsigned threads : {1u, 4u}) {
+        RenderProgress progress;
+        const SceneOptions particles{.width = 320, .height = 180, .count = 2000};
+        const Frame off = renderScene("particles", particles, {.threads = threads});
+        const Frame on = renderScene("particles", particles, {.threads = threads}, &progress);
+        EXPECT_TRUE(on.color == off.color)
+            << threads << " threads: " << countDiffering(on.color, off.color) << " bytes differ";
+        EXPECT_TRUE(on.depth == off.depth) << threads << " threads";
+        const SceneOptions fog{.width = 320, .height = 180, .cubes = 8};
+        const Frame fog_off = renderScene("fog", fog, {.threads = threads});
+        const Frame fog_on = renderScene("fog", fog, {.threads = threads}, &progress);
+        EXPECT_TRUE(fog_on.color == fog_off.color) << threads << " threads, fog";
+        EXPECT_TRUE(fog_on.depth == fog_off.depth) << threads << " threads, fog";
+        EXPECT_GT(progress.snapshot().drawsFinished, 2u) << "progress was on";
+    }
 }
 
 // ---- Reference pipeline --------------------------------------------------------------------------------

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -16,8 +17,10 @@
 #include <functional>
 #include <initializer_list>
 #include <iterator>
+#include <memory>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "commands.hpp"
@@ -120,6 +123,61 @@ TEST(StepCursor, DrawStepsFinishOrLeaveTheDraw) {
     EXPECT_EQ(where(c), (std::pair<int64_t, uint64_t>{2, 4}));
     c.showAll();
     EXPECT_EQ(c.label(), "whole frame, 2 draws");
+}
+
+// ---- Render progress -------------------------------------------------------------------------------------
+
+RunningRender runningAt(double seconds, uint32_t started, uint32_t finished, uint32_t tilesInDraw,
+                        uint32_t tilesFinished, bool solution = false) {
+    return {seconds, solution, {started, finished, tilesInDraw, tilesFinished}};
+}
+
+TEST(ViewerProgress, TextSaysWhichDrawAndHowManyOfItsTiles) {
+    EXPECT_EQ(progressText(RunningRender{}, 2), "rendering... 0.0 s");
+    EXPECT_EQ(progressText(runningAt(-1, 0, 0, 0, 0), 2), "rendering... 0.0 s");
+    EXPECT_EQ(progressText(runningAt(1.3, 2, 1, 200, 90), 2),
+              "rendering... 1.3 s  draw 2 of 2, 45% of its tiles");
+    EXPECT_EQ(progressText(runningAt(1.3, 2, 1, 200, 90), 0), "rendering... 1.3 s  draw 2, 45% of its tiles")
+        << "total unknown";
+    EXPECT_EQ(progressText(runningAt(1.3, 2, 1, 200, 90), 1), "rendering... 1.3 s  draw 2, 45% of its tiles")
+        << "a total below the draws seen is stale";
+    EXPECT_EQ(progressText(runningAt(0.1, 1, 0, 0, 0), 2), "rendering... 0.1 s  draw 1 of 2, geometry");
+    EXPECT_EQ(progressText(runningAt(0.1, 1, 1, 15, 15), 2), "rendering... 0.1 s  draw 1 of 2 done");
+    EXPECT_EQ(progressText(runningAt(12, 2, 1, 200, 199), 2),
+              "rendering... 12.0 s  draw 2 of 2, 99% of its tiles");
+    EXPECT_EQ(progressText(runningAt(12, 2, 1, 200, 200), 2),
+              "rendering... 12.0 s  draw 2 of 2, 100% of its tiles");
+    EXPECT_EQ(progressText(runningAt(0.4, 1, 0, 240, 0, true), 2),
+              "rendering solution... 0.4 s  draw 1 of 2, 0% of its tiles");
+}
+
+TEST(ViewerProgress, WorkerReportsTheFramesAndTheSolutionsDraws) {
+    // Long enough to be caught part way (a tenth of a second or so a render), short for a test.
+    RenderWorker worker("particles", {}, nullptr, SolutionRender{"particles", {}});
+    RenderRequest request;
+    request.scene = {.width = 1280, .height = 720, .count = 40000};
+    request.solution = true;
+    EXPECT_FALSE(worker.running().has_value()) << "idle";
+    const uint64_t id = worker.request(request);
+    std::shared_ptr<RenderedFrame> frame;
+    uint32_t frame_draws_seen = 0, solution_draws_seen = 0;
+    double last_seconds = 0;
+    while (!(frame = worker.takeFinished())) {
+        if (const std::optional<RunningRender> r = worker.running()) {
+            EXPECT_GE(r->seconds, last_seconds);
+            last_seconds = r->seconds;
+            EXPECT_LE(r->progress.drawsStarted, 2u);
+            uint32_t& seen = r->solution ? solution_draws_seen : frame_draws_seen;
+            seen = std::max(seen, r->progress.drawsStarted);
+        }
+        std::this_thread::sleep_for(std::chrono::microseconds(200));
+    }
+    EXPECT_EQ(frame->id, id);
+    EXPECT_TRUE(frame->error.empty()) << frame->error;
+    EXPECT_EQ(frame->drawCount, 2u);
+    EXPECT_EQ(frame->solutionDrawCount, 2u);
+    EXPECT_GE(frame_draws_seen, 1u) << "the frame's draws were never seen running";
+    EXPECT_GE(solution_draws_seen, 1u) << "the solution's draws were never seen running";
 }
 
 // ---- Scripts and options ---------------------------------------------------------------------------------

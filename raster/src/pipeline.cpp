@@ -1,10 +1,65 @@
-#include <cmath>
-
 #include "raster/pipeline.hpp"
+
+#include <cmath>
+#include <initializer_list>
+#include <thread>
 
 namespace raster {
 
 Context::Context(const ContextOptions& options) : options_(options), pool_(options.threads) {}
+
+namespace {
+
+// The write side of RenderProgress's sequence lock (Boehm's seqlock): `sequence` odd while `write`
+// rewrites the fields, even again after; a reader retries when it saw it odd or changed under it.
+// One writer at a time (one draw at a time, or a reset between frames).
+template <class Write>
+void writeLocked(std::atomic<uint32_t>& sequence, Write write) {
+    sequence.fetch_add(1, std::memory_order_relaxed);
+    std::atomic_thread_fence(std::memory_order_release);
+    write();
+    sequence.fetch_add(1, std::memory_order_release);
+}
+
+}  // namespace
+
+void RenderProgress::beginDraw() {
+    writeLocked(sequence_, [&] {
+        tiles_in_draw_.store(0, std::memory_order_relaxed);
+        tiles_finished_.store(0, std::memory_order_relaxed);
+        draws_started_.fetch_add(1, std::memory_order_relaxed);
+    });
+}
+
+void RenderProgress::reset() {
+    writeLocked(sequence_, [&] {
+        for (std::atomic<uint32_t>* a :
+             {&draws_started_, &draws_finished_, &tiles_in_draw_, &tiles_finished_})
+            a->store(0, std::memory_order_relaxed);
+    });
+}
+
+RenderProgress::Snapshot RenderProgress::snapshot() const {
+    for (;;) {
+        const uint32_t before = sequence_.load(std::memory_order_acquire);
+        if (before & 1) {  // a draw is starting: a handful of stores, unless its thread was preempted
+            std::this_thread::yield();
+            continue;
+        }
+        Snapshot s;
+        // Finished before started, and tiles done before tiles in the draw (each ends after the
+        // other began), so that neither count is seen ahead of the one it is part of.
+        s.drawsFinished = draws_finished_.load(std::memory_order_acquire);
+        s.drawsStarted = draws_started_.load(std::memory_order_acquire);
+        s.tilesFinished = tiles_finished_.load(std::memory_order_acquire);
+        s.tilesInDraw = tiles_in_draw_.load(std::memory_order_acquire);
+        std::atomic_thread_fence(std::memory_order_acquire);
+        if (sequence_.load(std::memory_order_relaxed) != before) continue;
+        // Tiles are counted with relaxed increments, which do not carry tilesInDraw's store with them.
+        s.tilesFinished = std::min(s.tilesFinished, s.tilesInDraw);
+        return s;
+    }
+}
 
 void Context::setVertexBuffer(uint32_t slot, const VertexBuffer* buffer) {
     RASTER_REQUIRE(slot < kMaxInputSlots, InvalidArgument,

@@ -25,6 +25,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <memory>
 #include <span>
 #include <string>
@@ -61,6 +62,63 @@ constexpr size_t kMaxLoggedDraws = 1 << 16;
 struct ContextOptions {
     unsigned threads = 0;    // 0: one per hardware thread
     bool reference = false;  // the double-precision reference pipeline
+};
+
+// How far a frame has got, for a progress display on another thread while the frame renders: give
+// one to Context::setProgress, reset() it before the frame, and read snapshot() from any thread.
+// The rendering threads write it; it never changes what is drawn. It counts the draws of one
+// context at a time (one may follow another, as the frame and its solution do in the viewer).
+//
+// Cost: a few atomic operations per draw and one relaxed increment per screen tile, only while set;
+// nothing per pixel. Without it (the default) a draw tests a null pointer once per tile.
+class RenderProgress {
+  public:
+    struct Snapshot {
+        uint32_t drawsStarted = 0;   // draws since reset() that passed validation: run, skipped or empty
+        uint32_t drawsFinished = 0;  // of those, the ones that ended (a skipped or empty draw at once)
+        // Of draw number drawsStarted (the latest): the screen tiles its rasterisation covers, 0
+        // until its geometry stages are done and for a draw that rasterises nothing (skipped, empty,
+        // no tile in the viewport), and how many of them are done (≤ tilesInDraw).
+        uint32_t tilesInDraw = 0;
+        uint32_t tilesFinished = 0;
+        bool drawRunning() const { return drawsFinished < drawsStarted; }
+    };
+
+    // A consistent reading: the tile counts belong to draw drawsStarted, drawsFinished ≤
+    // drawsStarted. Between resets each field only grows from one snapshot to the next, except the
+    // tile counts, which start again at 0 when drawsStarted grows.
+    Snapshot snapshot() const;
+    // Everything to 0. Call while no draw using this object runs (readers may go on reading).
+    void reset();
+
+  private:
+    friend class Context;
+    void beginDraw();
+    void beginTiles(uint32_t tiles) { tiles_in_draw_.store(tiles, std::memory_order_release); }
+    void tileFinished() { tiles_finished_.fetch_add(1, std::memory_order_relaxed); }
+    void endDraw() { draws_finished_.fetch_add(1, std::memory_order_release); }
+    // A draw, started when made and finished when gone, however the draw ends (run, skipped, empty,
+    // or throwing after validation). Null: nothing counted.
+    class DrawScope {
+      public:
+        explicit DrawScope(RenderProgress* progress) : progress_(progress) {
+            if (progress_) progress_->beginDraw();
+        }
+        ~DrawScope() {
+            if (progress_) progress_->endDraw();
+        }
+        DrawScope(const DrawScope&) = delete;
+        DrawScope& operator=(const DrawScope&) = delete;
+
+      private:
+        RenderProgress* progress_;
+    };
+
+    // A sequence lock over the per-draw reset: odd while beginDraw (or reset) rewrites the fields,
+    // so that a snapshot never pairs one draw's number with another draw's tiles.
+    std::atomic<uint32_t> sequence_{0};
+    std::atomic<uint32_t> draws_started_{0}, draws_finished_{0};
+    std::atomic<uint32_t> tiles_in_draw_{0}, tiles_finished_{0};
 };
 
 namespace detail {
@@ -197,6 +255,11 @@ public:
     // Draws since resetFrameStatistics (run or skipped).
     uint32_t drawCount() const { return draw_count_; }
 
+    // ---- Progress (see RenderProgress): draws report into `progress` until setProgress(nullptr),
+    // for another thread to show while the frame renders. Not reset here; it must outlive its use.
+    void setProgress(RenderProgress* progress) { progress_ = progress; }
+    RenderProgress* progress() const { return progress_; }
+
     // ---- Trace (see trace.hpp): draws record into `trace` until setTrace(nullptr). The trace
     // must outlive its use; it is not cleared here (Trace::clear starts a new frame's records).
     void setTrace(Trace* trace) { trace_ = trace; }
@@ -266,6 +329,7 @@ private:
     uint32_t draw_count_ = 0;
     std::unordered_map<std::type_index, std::shared_ptr<void>> scratch_;
     Trace* trace_ = nullptr;
+    RenderProgress* progress_ = nullptr;
 };
 
 }  // namespace raster

@@ -44,6 +44,7 @@ void Context::execute(const VS& vs, const GS& gs, const PS& ps, const DrawCall& 
         checkVertexBuffers(program, vertex_buffers_, assembled.maxFetch, call.instanceCount - 1, call.startInstance);
     draw_stats_ = {};
     const uint32_t draw_index = draw_count_++;
+    const RenderProgress::DrawScope progress_scope(progress_);
     TraceDraw* trace_draw = trace_ ? &beginTraceDraw<VS, GS, PS>(draw_index, p) : nullptr;
     const bool trace_geometry = trace_draw && trace_->options().geometry;
     auto finish = [&](const PipelineStatistics& s) {
@@ -414,6 +415,8 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
     const float min_depth = plan.viewport.minDepth, max_depth = plan.viewport.maxDepth;
     std::vector<PipelineStatistics> per_thread(pool_.size());
     [[maybe_unused]] std::vector<std::vector<TraceFragment>> traced_tiles(Tracer::kEnabled ? plan.grid.count() : 0);
+    RenderProgress* const progress = progress_;
+    if (progress) progress->beginTiles(plan.grid.count());
     pool_.parallelFor(plan.grid.count(), [&](uint32_t tile, unsigned thread) {
         PipelineStatistics& st = per_thread[thread];
         const PixelRect rect = plan.grid.tileRect(tile);
@@ -730,6 +733,7 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
             }
         }
         if constexpr (Tracer::kEnabled) traced_tiles[tile] = std::move(tracer.fragments);
+        if (progress) progress->tileFinished();  // per tile, never per pixel: see RenderProgress
     });
     for (const PipelineStatistics& s : per_thread) stats += s;
     if constexpr (Tracer::kEnabled)

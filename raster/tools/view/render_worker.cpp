@@ -1,5 +1,8 @@
 #include "render_worker.hpp"
 
+#include <algorithm>
+#include <cstdio>
+
 namespace raster::tools {
 namespace {
 
@@ -11,6 +14,28 @@ bool sameScene(const SceneOptions& a, const SceneOptions& b) {
 }
 
 }  // namespace
+
+std::string progressText(const RunningRender& running, uint32_t drawTotal) {
+    const RenderProgress::Snapshot& p = running.progress;
+    char text[128];
+    int n = std::snprintf(text, sizeof text, "rendering%s... %.1f s", running.solution ? " solution" : "",
+                          std::max(running.seconds, 0.0));
+    if (p.drawsStarted > 0) {
+        // A total below the draws seen is stale (another scene's): better none than a wrong one.
+        if (drawTotal >= p.drawsStarted)
+            n += std::snprintf(text + n, sizeof text - n, "  draw %u of %u", p.drawsStarted, drawTotal);
+        else
+            n += std::snprintf(text + n, sizeof text - n, "  draw %u", p.drawsStarted);
+        if (!p.drawRunning())
+            std::snprintf(text + n, sizeof text - n, " done");
+        else if (p.tilesInDraw == 0)  // its vertex and geometry stages, before any tile
+            std::snprintf(text + n, sizeof text - n, ", geometry");
+        else  // rounded down: 100% only once every tile is done
+            std::snprintf(text + n, sizeof text - n, ", %u%% of its tiles",
+                          unsigned(uint64_t(p.tilesFinished) * 100 / p.tilesInDraw));
+    }
+    return text;
+}
 
 Scene& RenderWorker::CachedScene::get(const std::string& name, const SceneOptions& wanted) {
     if (!scene || !sameScene(options, wanted)) {
@@ -55,16 +80,21 @@ std::shared_ptr<RenderedFrame> RenderWorker::takeFinished() {
     return std::move(finished_);
 }
 
-double RenderWorker::runningSeconds() const {
+std::optional<RunningRender> RenderWorker::running() const {
     std::lock_guard lock(mutex_);
-    if (!running_) return -1.0;
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - running_since_).count();
+    if (!running_) return std::nullopt;
+    RunningRender r;
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - running_since_).count();
+    r.solution = running_solution_;
+    r.progress = progress_.snapshot();  // under the lock: of the render running_solution_ names
+    return r;
 }
 
 void RenderWorker::loop() {
     // The Contexts (and their thread pools) live and die on this thread. A solution under other
     // options (the reference pipeline) gets its own, once asked for; another scene shares this one.
     Context context(context_options_);
+    context.setProgress(&progress_);
     std::unique_ptr<Context> solution_context;
     const bool own_solution_context =
         solution_ && (solution_->context.reference != context_options_.reference ||
@@ -80,12 +110,21 @@ void RenderWorker::loop() {
             request = std::move(pending_);
             pending_id_ = 0;
             running_ = true;
+            running_solution_ = false;
             running_since_ = std::chrono::steady_clock::now();
+            progress_.reset();
         }
         std::shared_ptr<RenderedFrame> frame = render(context, id, std::move(request));
         if (frame->request.solution && solution_ && frame->error.empty()) {
-            if (own_solution_context && !solution_context)
+            if (own_solution_context && !solution_context) {
                 solution_context = std::make_unique<Context>(solution_->context);
+                solution_context->setProgress(&progress_);
+            }
+            {
+                std::lock_guard lock(mutex_);
+                running_solution_ = true;
+                progress_.reset();
+            }
             renderSolution(own_solution_context ? *solution_context : context, *frame);
         }
         {
@@ -152,6 +191,7 @@ void RenderWorker::renderSolution(Context& context, RenderedFrame& frame) {
         frame.solutionMilliseconds =
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
         frame.solution = std::move(color);
+        frame.solutionDrawCount = context.drawCount();
     } catch (const std::exception& e) {
         frame.solutionError = e.what();
     }

@@ -76,8 +76,20 @@ struct RenderedFrame {
     // own when request.scene.camera is unset) and step limit, never traced.
     std::optional<RenderTarget> solution;
     double solutionMilliseconds = 0;
+    uint32_t solutionDrawCount = 0;  // draws the solution scene issued (for the next render's progress)
     std::string solutionError;  // what its render threw; the frame itself is still good
 };
+
+// The render running now, as the HUD tells it.
+struct RunningRender {
+    double seconds = 0;                 // since the request started rendering (its solution included)
+    bool solution = false;              // rendering the solution, the frame itself done
+    RenderProgress::Snapshot progress;  // of the frame, or of the solution when `solution`
+};
+
+// The HUD's line about it: "rendering... 1.3 s  draw 2 of 2, 45% of its tiles". `drawTotal` is the
+// draws the scene issues (known from an earlier frame's shape; 0: unknown, and then "draw 2").
+std::string progressText(const RunningRender& running, uint32_t drawTotal);
 
 class RenderWorker {
   public:
@@ -92,8 +104,8 @@ class RenderWorker {
     uint64_t request(RenderRequest request);
     // The newest frame finished since the last call, or null.
     std::shared_ptr<RenderedFrame> takeFinished();
-    // Seconds the current render has been running; negative when none is.
-    double runningSeconds() const;
+    // The render running now; none when the worker waits.
+    std::optional<RunningRender> running() const;
 
   private:
     // A scene kept between renders, rebuilt when the size or the camera changes.
@@ -122,7 +134,10 @@ class RenderWorker {
     RenderRequest pending_;
     std::shared_ptr<RenderedFrame> finished_;
     bool running_ = false;
+    bool running_solution_ = false;
     std::chrono::steady_clock::time_point running_since_;
+    // The worker thread's Contexts report into it; reset before the frame and before its solution.
+    RenderProgress progress_;
     std::thread thread_;  // last: starts once everything above is constructed
 };
 

@@ -123,8 +123,9 @@ void Viewer::run() {
     requestRender();
     while (!quit_) {
         SDL_Event event;
-        // Short waits while something is due (a render's clock, script actions), long ones when idle.
-        const int timeout = !upToDate() || !queue_.empty() ? 15 : 200;
+        // Short waits while script actions are due; while a render runs, a tenth of a second, for
+        // the HUD's clock and progress (each redraw takes CPU from the render); long ones when idle.
+        const int timeout = !queue_.empty() ? 15 : !upToDate() ? 100 : 200;
         if (SDL_WaitEventTimeout(&event, timeout)) {
             handleEvent(event);
             while (SDL_PollEvent(&event)) handleEvent(event);
@@ -378,6 +379,7 @@ void Viewer::show(std::shared_ptr<RenderedFrame> frame) {
         if (options_.headless) throw Error(ErrorCode::InvalidState, what);
         std::fprintf(stderr, "raster view: %s\n", what.c_str());
     }
+    if (frame->solution) solution_draws_ = frame->solutionDrawCount;
     const Context::StepLimit& limit = frame->request.limit;
     const bool whole = limit.draws == UINT32_MAX && limit.primitives == UINT64_MAX;
     if (whole) frame->request.stepLabel = "whole frame, " + std::to_string(frame->drawCount) + " draws";

@@ -145,6 +145,7 @@ class Viewer {
     SolutionSource solution_;
     ImageRgba8 solution_image_;  // Kind::Image: the PNG, read once
     bool requested_solution_ = false;
+    uint32_t solution_draws_ = 0;  // draws of the last rendered solution (0: none yet), for its progress
     std::vector<std::string> difference_said_;  // the difference's lines printed last
     bool left_down_ = false, dragging_ = false;
     int press_x_ = 0, press_y_ = 0, last_x_ = 0, last_y_ = 0;

@@ -259,10 +259,12 @@ void Viewer::composeWindow() {
         hud.lines.insert(hud.lines.end(), view_notes_.begin(), view_notes_.end());
     }
     if (!upToDate()) {
-        const double seconds = worker_->runningSeconds();
-        char text[64];
-        std::snprintf(text, sizeof text, "rendering... %.1f s", std::max(seconds, 0.0));
-        hud.lines.push_back(text);
+        // Between the request and the worker taking it up, nothing runs yet: 0 s, no draw.
+        const RunningRender running = worker_->running().value_or(RunningRender{});
+        // The frame's draws are its scene's, whatever the step (later draws are skipped, not
+        // left out); the solution's are known once one has been rendered.
+        const uint32_t total = running.solution ? solution_draws_ : cursor_.drawCount();
+        hud.lines.push_back(progressText(running, total));
     }
     if (!render_error_.empty()) hud.lines.push_back("render failed: " + render_error_);
     drawPanel(renderer_, hud, scale);
