@@ -909,6 +909,81 @@ TEST(TraceStepping, ForwardsAndBackReachTheSameImages) {
     EXPECT_FALSE(stepped({2, kCount - 1}).color == whole.color) << "the last particle is on screen";
 }
 
+TEST(TraceStepping, StageByStageRunsTheStagesUpToTheLimit) {
+    using Stage = Context::Stage;
+    constexpr uint32_t kCount = 300;
+    const SceneOptions o{.width = 320, .height = 180, .count = kCount};
+    auto scene = makeScene("particles", o);
+    Context ctx;
+    const Frame whole = renderFrame(*scene, ctx, o);
+    ctx.setStepLimit({1});
+    const Frame occluder = renderFrame(*scene, ctx, o);  // draw 0 only
+    ASSERT_FALSE(occluder.color == whole.color);
+    struct Run {
+        Frame frame{RenderTarget(1, 1), DepthTarget(1, 1)};
+        PipelineStatistics particles;  // draw 1's statistics
+        Trace trace{TraceOptions{.geometry = true}};
+    };
+    auto run = [&](Context::StepLimit limit) {
+        auto r = std::make_unique<Run>();
+        ctx.setStepLimit(limit);
+        ctx.setTrace(&r->trace);
+        r->frame = renderFrame(*scene, ctx, o);
+        ctx.setTrace(nullptr);
+        EXPECT_EQ(ctx.drawStatisticsLog().size(), 2u);
+        if (ctx.drawStatisticsLog().size() == 2) r->particles = ctx.drawStatisticsLog()[1];
+        return r;
+    };
+    // Up to the vertex shader: every point shaded, nothing after; no pixel of draw 1 written.
+    const auto vs = run({2, UINT64_MAX, Stage::VertexShader});
+    EXPECT_EQ(vs->particles.vsInvocations, kCount);
+    EXPECT_EQ(vs->particles.gsInvocations, 0u);
+    EXPECT_EQ(vs->particles.cInvocations, 0u);
+    EXPECT_EQ(vs->particles.psInvocations, 0u);
+    EXPECT_TRUE(vs->frame.color == occluder.color);
+    EXPECT_TRUE(vs->frame.depth == occluder.depth);
+    ASSERT_EQ(vs->trace.draws().size(), 2u);
+    EXPECT_EQ(vs->trace.draws()[1].verticesTotal, kCount);
+    EXPECT_EQ(vs->trace.draws()[1].gsVerticesTotal, 0u);
+    // Up to the geometry shader: two triangles per point, none clipped or set up.
+    const auto gs = run({2, UINT64_MAX, Stage::GeometryShader});
+    EXPECT_EQ(gs->particles.gsInvocations, kCount);
+    EXPECT_EQ(gs->particles.gsPrimitives, 2 * kCount);
+    EXPECT_EQ(gs->particles.cInvocations, 0u);
+    EXPECT_EQ(gs->particles.psInvocations, 0u);
+    EXPECT_TRUE(gs->frame.color == occluder.color);
+    EXPECT_EQ(gs->trace.draws()[1].gsVerticesTotal, 4 * kCount);
+    EXPECT_EQ(gs->trace.draws()[1].primitivesTotal, 0u);
+    // Up to setup: clipped and set up (as rectangles), still no pixel.
+    const auto setup = run({2, UINT64_MAX, Stage::Setup});
+    EXPECT_EQ(setup->particles.gsPrimitives, 2 * kCount);
+    EXPECT_EQ(setup->particles.cInvocations, 2 * kCount);
+    EXPECT_GT(setup->particles.rectanglesRecognized, 0u);
+    EXPECT_EQ(setup->particles.psInvocations, 0u);
+    EXPECT_TRUE(setup->frame.color == occluder.color);
+    EXPECT_TRUE(setup->frame.depth == occluder.depth);
+    EXPECT_GT(setup->trace.draws()[1].primitivesTotal, 0u);
+    // The whole pipeline: the plain frame, with the same geometry statistics as setup's.
+    const auto om = run({2, UINT64_MAX, Stage::OutputMerger});
+    EXPECT_TRUE(om->frame.color == whole.color);
+    EXPECT_TRUE(om->frame.depth == whole.depth);
+    EXPECT_GT(om->particles.psInvocations, 0u);
+    EXPECT_EQ(om->particles.cInvocations, setup->particles.cInvocations);
+    EXPECT_EQ(om->particles.rectanglesRecognized, setup->particles.rectanglesRecognized);
+    // The stage applies to the step's own draw only: earlier draws run whole, and without `draws`
+    // there is no step's draw.
+    const auto occluder_vs = run({1, UINT64_MAX, Stage::VertexShader});
+    Frame cleared{RenderTarget(o.width, o.height), DepthTarget(o.width, o.height)};
+    cleared.color.clear({0, 0, 0, 1});
+    EXPECT_TRUE(occluder_vs->frame.color == cleared.color) << "draw 0 stopped after its vertex shader";
+    EXPECT_TRUE(run({UINT32_MAX, UINT64_MAX, Stage::VertexShader})->frame.color == whole.color);
+    // Primitive and stage limits together: the first 10 particles up to the geometry shader.
+    const auto ten = run({2, 10, Stage::GeometryShader});
+    EXPECT_EQ(ten->particles.gsInvocations, 10u);
+    EXPECT_EQ(ten->particles.gsPrimitives, 20u);
+    EXPECT_EQ(ten->particles.cInvocations, 0u);
+}
+
 TEST(TraceStepping, PixelHistoryHasOnlyTheAllowedPrimitives) {
     constexpr uint32_t kCount = 500, kAllowed = 40;
     const SceneOptions o{.width = 320, .height = 180, .count = kCount};

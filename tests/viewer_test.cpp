@@ -747,7 +747,12 @@ TEST_F(ViewerTest, GeometryShaderOutputAndStages) {
     const TraceDraw* draw = findTraceDraw(*t.trace, 1);
     ASSERT_NE(draw, nullptr);
     ASSERT_EQ(draw->gsVertices.size(), 12u) << "three billboards, a 4-vertex strip each";
-    std::vector<uint8_t> dimmed = t.color.toRgba8();
+    // The stage views stop the current draw at their stage: under the overlay, the framebuffer
+    // before draw 2's pixels (the occluder alone).
+    const DirectTrace staged = traced({2, 3, Context::Stage::Setup}, {});
+    EXPECT_TRUE(staged.color == traced({1}, {}).color);
+    EXPECT_FALSE(staged.color == t.color);
+    std::vector<uint8_t> dimmed = staged.color.toRgba8();
     dim(dimmed);
     // The GS output's edges: each strip's (i, i+1) and (i, i+2), in screen space.
     std::vector<std::pair<glm::dvec2, glm::dvec2>> gs_edges;

@@ -246,9 +246,19 @@ public:
     // numbered `draws` and later are skipped (validated, not run), and draw `draws − 1` runs only
     // its first `primitives` input primitives (in input-assembler order, instances included).
     // Replaying a frame under growing limits steps it draw by draw and primitive by primitive.
+    // `stage` steps it stage by stage: draw `draws − 1` (only that one, so only when `draws` is
+    // set) runs its admitted primitives up to and including that stage and no further —
+    //   VertexShader:   input assembler and vertex shader (the GS, clipper, setup and pixels not run),
+    //   GeometryShader: also the geometry shader (its output neither clipped nor set up; for a draw
+    //                   without one, the same as VertexShader),
+    //   Setup:          also clipping, setup and binning (no pixel rasterised, shaded or written),
+    //   OutputMerger:   the whole pipeline (the default).
+    // Statistics and the trace then hold what ran: e.g. at Setup, cPrimitives but no psInvocations.
+    enum class Stage : uint8_t { VertexShader, GeometryShader, Setup, OutputMerger };
     struct StepLimit {
         uint32_t draws = UINT32_MAX;
         uint64_t primitives = UINT64_MAX;
+        Stage stage = Stage::OutputMerger;
     };
     void setStepLimit(const StepLimit& limit) { step_limit_ = limit; }
     const StepLimit& stepLimit() const { return step_limit_; }

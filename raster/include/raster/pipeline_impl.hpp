@@ -63,12 +63,17 @@ void Context::execute(const VS& vs, const GS& gs, const PS& ps, const DrawCall& 
     stats.iaPrimitives = uint64_t(assembled.primitiveCount()) * call.instanceCount;
     stats.vsInvocations = uint64_t(assembled.fetch.size()) * call.instanceCount;
 
+    // The last stage this draw runs (StepLimit::stage applies to the step's own draw only).
+    const Stage last_stage = draw_index + 1 == step_limit_.draws ? step_limit_.stage : Stage::OutputMerger;
+
     // ---- VS ----
     auto& vs_out = scratch<std::vector<VsOut>>();
     runVertexShader(vs, program, vertex_buffers_, assembled, call, pool_, vs_out);
     if (trace_geometry)
         detail::traceVertices<VsIn>(*trace_draw, trace_->options().maxGeometryRecords, program, vertex_buffers_,
                                     assembled, call, vs_out);
+    if (last_stage == Stage::VertexShader || (!kHasGs && last_stage == Stage::GeometryShader)) return finish(stats);
+    const bool setup_stage = last_stage != Stage::GeometryShader;
 
     // ---- GS → clip → setup → bin, in parallel over chunks of primitives ----
     const uint32_t per_instance = uint32_t(assembled.fetch.size());
@@ -105,10 +110,10 @@ void Context::execute(const VS& vs, const GS& gs, const PS& ps, const DrawCall& 
                     gs, gs_in, *stream,
                     [&](PrimitiveKind kind, const Vertex* const* v) {
                         ++chunk.stats.gsPrimitives;
-                        clipAndSetup(kind, v, uint32_t(prim), p, rasterizer_, chunk);
+                        if (setup_stage) clipAndSetup(kind, v, uint32_t(prim), p, rasterizer_, chunk);
                     },
                     [&](const Vertex* const* quad) {
-                        return rectangles && setupBillboard(quad, uint32_t(prim), p, rasterizer_, chunk);
+                        return setup_stage && rectangles && setupBillboard(quad, uint32_t(prim), p, rasterizer_, chunk);
                     });
                 if (overflow && !chunk.gsOverflow) chunk.gsOverflow = overflow, chunk.gsOverflowPrimitive = uint32_t(prim);
                 if (chunk.tracing) {
@@ -145,7 +150,7 @@ void Context::execute(const VS& vs, const GS& gs, const PS& ps, const DrawCall& 
     if constexpr (!kHasGs) stats.gsInvocations = stats.gsPrimitives = 0;
 
     // ---- rasterize → PS → OM, in parallel over screen tiles ----
-    if (!p.clip.empty()) {
+    if (!p.clip.empty() && last_stage == Stage::OutputMerger) {
         const DepthPolicy depth = chooseDepthPolicy(depth_stencil_, depth_, options_.reference);
         const ColorPolicy color = chooseColorPolicy(blend_, p.targets.data(), p.targetCount, options_.reference);
         if (isOrderIndependent(blend_, p.targetCount)) ++stats.sortsAvoided;

@@ -301,11 +301,25 @@ void Viewer::requestRender() {
     request.scene.width = width_;
     request.scene.height = height_;
     request.scene.camera = camera_moved_ ? std::optional<SceneCamera>(camera_) : std::nullopt;
-    request.limit = cursor_.limit();
+    request.limit = requested_limit_ = stepLimit();
     request.stepLabel = cursor_.label();
     request.trace = requested_trace_ = traceNeeds();
     request.solution = requested_solution_ = solutionNeeded();
     requested_id_ = worker_->request(std::move(request));
+}
+
+Context::StepLimit Viewer::stepLimit() const {
+    Context::StepLimit limit = cursor_.limit();
+    if (stage_ == Stage::Final) return limit;
+    // A stage view runs the current draw (the whole frame's last) only up to its stage, so the
+    // image under the overlay is the framebuffer before that draw's pixels. The vertex view runs
+    // the geometry shader too: with one, its output is what places the input primitives.
+    if (limit.draws == UINT32_MAX) {
+        if (!cursor_.hasShape() || cursor_.drawCount() == 0) return limit;
+        limit.draws = cursor_.drawCount();
+    }
+    limit.stage = stage_ == Stage::Primitives ? Context::Stage::Setup : Context::Stage::GeometryShader;
+    return limit;
 }
 
 TraceRequest Viewer::traceNeeds() const {
@@ -327,10 +341,16 @@ void Viewer::viewsChanged() {
     const TraceRequest need = traceNeeds();
     const bool need_solution = solutionNeeded();
     // Views switched off, or on with what the shown (or the coming) frame has: no new render.
-    const bool coming =
-        !upToDate() && requested_trace_.covers(need) && (requested_solution_ || !need_solution);
-    const bool shown_has =
-        shown_ && shown_->request.trace.covers(need) && (shown_->request.solution || !need_solution);
+    // A stage view also changes the step limit (the current draw stops at the stage).
+    const Context::StepLimit limit = stepLimit();
+    const auto same = [&](const Context::StepLimit& l) {
+        return l.draws == limit.draws && l.primitives == limit.primitives && l.stage == limit.stage;
+    };
+    const bool coming = !upToDate() && requested_trace_.covers(need) && (requested_solution_ || !need_solution) &&
+                        same(requested_limit_);
+    // (The shown frame counts only when no other render is coming to replace it.)
+    const bool shown_has = upToDate() && shown_ && shown_->request.trace.covers(need) &&
+                           (shown_->request.solution || !need_solution) && same(shown_->request.limit);
     if (!coming && !shown_has)
         requestRender();
     else

@@ -97,6 +97,8 @@ class Viewer {
     void drawWindow();
     void saveScreenshot();
     void reportPixel(int windowX, int windowY);
+    // The cursor's step limit, with the stage a stage view (V, G) stops the current draw at.
+    Context::StepLimit stepLimit() const;
     // What the shown views need the frame's trace to hold.
     TraceRequest traceNeeds() const;
     // After a view changed: re-render with the trace it needs, or just redraw the image.
@@ -142,6 +144,7 @@ class Viewer {
     bool pixel_selected_ = false, history_pending_ = false;
     int32_t pixel_x_ = 0, pixel_y_ = 0;
     TraceRequest requested_trace_;
+    Context::StepLimit requested_limit_;
     SolutionSource solution_;
     ImageRgba8 solution_image_;  // Kind::Image: the PNG, read once
     bool requested_solution_ = false;
