@@ -28,6 +28,21 @@ Pair handMade() {
     return p;
 }
 
+TEST(CompareViews, RgbLeavesAlphaOut) {
+    // raster bench compares RGB only: pixel 3's alpha − 2 is not counted, its B + 4 is.
+    const Pair p = handMade();
+    const ImageDifference d = compareImages(p.a, p.b, 3, 2, 3);
+    EXPECT_EQ(d.differing, 4u);
+    EXPECT_EQ(d.max, 200);
+    EXPECT_DOUBLE_EQ(d.meanAbs, 608.0 / 18.0);  // 1 + 3 + 4 + 3·200 over 6 pixels × 3 channels
+    EXPECT_EQ(d.within3, 4u);
+    std::vector<uint8_t> alpha_only = p.a;
+    alpha_only[3] = 0;
+    EXPECT_EQ(compareImages(p.a, alpha_only, 3, 2, 3).differing, 0u);
+    EXPECT_EQ(compareImages(p.a, alpha_only, 3, 2).differing, 1u);
+    EXPECT_THROW(compareImages(p.a, p.b, 3, 2, 2), Error);
+}
+
 TEST(CompareViews, StatisticsOfHandMadeImages) {
     const Pair p = handMade();
     const ImageDifference d = compareImages(p.a, p.b, 3, 2);

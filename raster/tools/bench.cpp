@@ -12,6 +12,7 @@
 #include "commands.hpp"
 #include "options.hpp"
 #include "raster/scenes.hpp"
+#include "view/compare_views.hpp"
 
 namespace raster::tools {
 namespace {
@@ -23,33 +24,6 @@ constexpr const char* kUsage =
     "  K timed frames (default 20) after one warm-up frame, on T threads (default: all cores).\n"
     "  Prints the fast pipeline's error against the reference pipeline (skip with --no-error), then\n"
     "  'raster <scene> <W>x<H> ms_per_frame_median=<t> frames=<K>'.\n";
-
-struct ImageError {
-    double mean = 0;  // mean absolute channel difference, in 1/255
-    int max = 0;
-    double within1 = 0;  // share of pixels whose largest channel difference is <= 1
-};
-
-ImageError compareImages(const RenderTarget& a, const RenderTarget& b) {
-    const std::vector<uint8_t> x = a.toRgba8(), y = b.toRgba8();
-    ImageError e;
-    size_t within = 0;
-    double sum = 0;
-    const size_t pixels = x.size() / 4;
-    for (size_t p = 0; p < pixels; ++p) {
-        int m = 0;
-        for (int c = 0; c < 3; ++c) {
-            const int d = std::abs(int(x[4 * p + c]) - int(y[4 * p + c]));
-            sum += d;
-            m = std::max(m, d);
-        }
-        e.max = std::max(e.max, m);
-        within += m <= 1;
-    }
-    e.mean = sum / (3.0 * double(pixels));
-    e.within1 = double(within) / double(pixels);
-    return e;
-}
 
 }  // namespace
 
@@ -120,8 +94,9 @@ int bench(int argc, char** argv) {
         RenderTarget ref_color(options.width, options.height);
         DepthTarget ref_depth(options.width, options.height);
         scene->render(ref_context, ref_color, ref_depth);
-        const ImageError e = compareImages(color, ref_color);
-        std::printf("error_vs_reference mean_abs=%.4f max_diff=%d within_1=%.6f\n", e.mean, e.max, e.within1);
+        const ImageDifference e = compareImages(color.toRgba8(), ref_color.toRgba8(), color.width(), color.height(), 3);
+        std::printf("error_vs_reference mean_abs=%.4f max_diff=%d within_1=%.6f\n", e.meanAbs, e.max,
+                    double(e.within1) / double(e.pixels));
     }
     std::printf("raster %s %ux%u ms_per_frame_median=%.3f frames=%u\n", scene_name.c_str(), options.width,
                 options.height, ms[ms.size() / 2], frames);

@@ -259,6 +259,7 @@ public:
         uint32_t draws = UINT32_MAX;
         uint64_t primitives = UINT64_MAX;
         Stage stage = Stage::OutputMerger;
+        bool operator==(const StepLimit&) const = default;
     };
     void setStepLimit(const StepLimit& limit) { step_limit_ = limit; }
     const StepLimit& stepLimit() const { return step_limit_; }

@@ -13,9 +13,9 @@ namespace {
 
 constexpr int kGreyOfOne = 64;  // the difference view's smallest difference: dark grey, still visible
 
-int largestChannelDifference(const uint8_t* a, const uint8_t* b) {
+int largestChannelDifference(const uint8_t* a, const uint8_t* b, int channels = 4) {
     int m = 0;
-    for (int c = 0; c < 4; ++c) m = std::max(m, std::abs(int(a[c]) - int(b[c])));
+    for (int c = 0; c < channels; ++c) m = std::max(m, std::abs(int(a[c]) - int(b[c])));
     return m;
 }
 
@@ -64,21 +64,23 @@ std::string solutionLabel(const SolutionSource& solution) {
 }
 
 ImageDifference compareImages(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b, uint32_t width,
-                              uint32_t height) {
+                              uint32_t height, int channels) {
     requireSize(a, b, width, height);
+    RASTER_REQUIRE(channels == 3 || channels == 4, InvalidArgument,
+                   "comparing " + std::to_string(channels) + " channels (3: RGB, 4: RGBA)");
     ImageDifference d;
     d.pixels = size_t(width) * height;
     uint64_t sum = 0;  // of every channel's |a − b|: at most 255 · 4 · 16384² fits
     for (size_t i = 0; i < d.pixels; ++i) {
         const uint8_t *p = &a[4 * i], *q = &b[4 * i];
-        for (int c = 0; c < 4; ++c) sum += uint64_t(std::abs(int(p[c]) - int(q[c])));
-        const int m = largestChannelDifference(p, q);
+        for (int c = 0; c < channels; ++c) sum += uint64_t(std::abs(int(p[c]) - int(q[c])));
+        const int m = largestChannelDifference(p, q, channels);
         d.differing += m > 0;
         d.within1 += m <= 1;
         d.within3 += m <= 3;
         if (m > d.max) d.max = m, d.maxX = uint32_t(i % width), d.maxY = uint32_t(i / width);
     }
-    d.meanAbs = d.pixels > 0 ? double(sum) / (4.0 * double(d.pixels)) : 0.0;
+    d.meanAbs = d.pixels > 0 ? double(sum) / (double(channels) * double(d.pixels)) : 0.0;
     return d;
 }
 

@@ -27,7 +27,7 @@ SolutionSource parseSolution(std::string_view value);
 // "the reference pipeline", "scene fog", "lab1.png": what the HUD calls it.
 std::string solutionLabel(const SolutionSource& solution);
 
-// The figures ../shared/anchors/imgdiff.cpp reports, over all four channels of RGBA8.
+// The figures ../shared/anchors/imgdiff.cpp reports, over the channels compared.
 struct ImageDifference {
     size_t pixels = 0;                // compared
     size_t differing = 0;             // pixels with any channel different
@@ -36,9 +36,10 @@ struct ImageDifference {
     double meanAbs = 0;               // mean |a − b| over every channel of every pixel, in 1/255
     size_t within1 = 0, within3 = 0;  // pixels whose largest channel difference is <= 1, <= 3
 };
-// a and b: RGBA8 images of width × height each.
+// a and b: RGBA8 images of width × height each. `channels`: 4 compares RGBA (the viewer), 3 only
+// RGB (raster bench's error against the reference: what is seen, as compare.sh measures it).
 ImageDifference compareImages(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b, uint32_t width,
-                              uint32_t height);
+                              uint32_t height, int channels = 4);
 // The HUD's lines about a difference from `label`.
 std::vector<std::string> describeDifference(const ImageDifference& d, const std::string& label);
 

@@ -343,14 +343,11 @@ void Viewer::viewsChanged() {
     // Views switched off, or on with what the shown (or the coming) frame has: no new render.
     // A stage view also changes the step limit (the current draw stops at the stage).
     const Context::StepLimit limit = stepLimit();
-    const auto same = [&](const Context::StepLimit& l) {
-        return l.draws == limit.draws && l.primitives == limit.primitives && l.stage == limit.stage;
-    };
     const bool coming = !upToDate() && requested_trace_.covers(need) && (requested_solution_ || !need_solution) &&
-                        same(requested_limit_);
+                        requested_limit_ == limit;
     // (The shown frame counts only when no other render is coming to replace it.)
     const bool shown_has = upToDate() && shown_ && shown_->request.trace.covers(need) &&
-                           (shown_->request.solution || !need_solution) && same(shown_->request.limit);
+                           (shown_->request.solution || !need_solution) && shown_->request.limit == limit;
     if (!coming && !shown_has)
         requestRender();
     else
