@@ -8,6 +8,7 @@ namespace raster {
     X(primitivesCulled) X(primitivesDegenerate) X(primitivesNoPixels) X(rectanglesRecognized) X(tilesBinned) X(tilesRejected)    \
     X(tilesOccluded)                                                                                    \
     X(fragmentsEarlyDepthKilled) X(fragmentsLateDepthKilled) X(fragmentsDiscarded) X(fragmentsBlendNoOp) \
+    X(fragmentsOverdrawSkipped)                                                                          \
     X(helperInvocations) X(derivativeReplays) X(sortsAvoided)
 
 PipelineStatistics& PipelineStatistics::operator+=(const PipelineStatistics& o) {

@@ -403,6 +403,29 @@ struct ReferenceModeGuard {
 
 }  // namespace detail
 
+namespace detail {
+// A copy of a trivially copyable shader (by reference otherwise: a shader that owns resources is
+// still called, only without the copy's benefit).
+template <class PS, bool kCopy = std::is_trivially_copyable_v<PS>>
+struct WideShaderCopy {
+    PS value;
+    explicit WideShaderCopy(const PS& ps) : value(ps) {}
+    template <class In>
+    [[gnu::always_inline]] auto operator()(const In& in) const {
+        return value(in);
+    }
+};
+template <class PS>
+struct WideShaderCopy<PS, false> {
+    const PS& value;
+    explicit WideShaderCopy(const PS& ps) : value(ps) {}
+    template <class In>
+    [[gnu::always_inline]] auto operator()(const In& in) const {
+        return value(in);
+    }
+};
+}  // namespace detail
+
 template <class PS, class V, class Real, class Tracer, class Depth, class Color>
 void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, uint32_t chunk_count,
                           const DrawPlan& plan, const Depth& depth, const Color& color, PipelineStatistics& stats,
@@ -417,6 +440,14 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
         else
             return false;
     }();
+    // Opaque draws with depth writes may be shaded deferred (shadeDeferred below).
+    constexpr bool kDeferrable = [] {
+        if constexpr (requires { Depth::kWrite; })
+            return kWide && Depth::kWide && Color::kWide && Depth::kEnabled && Depth::kWrite &&
+                   std::is_same_v<Color, ColorFast<BlendReplaceRgba8>>;
+        else
+            return false;
+    }();
     const float min_depth = plan.viewport.minDepth, max_depth = plan.viewport.maxDepth;
     std::vector<PipelineStatistics> per_thread(pool_.size());
     [[maybe_unused]] std::vector<std::vector<TraceFragment>> traced_tiles(Tracer::kEnabled ? plan.grid.count() : 0);
@@ -427,6 +458,11 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
         const PixelRect rect = plan.grid.tileRect(tile);
         detail::ReferenceModeGuard reference(std::is_same_v<Real, double>);
         QuadShader<PS> shader(ps);
+        // The eight-wide paths call a copy of the shader that lives on this thread's stack and whose
+        // address stays inside the inlined loop: the compiler may then keep the shader's constants
+        // (and what it computes from them alone) in registers across the blocks, which it cannot do
+        // through `ps`, since a store to the targets might, for all it knows, change `ps`.
+        [[maybe_unused]] const detail::WideShaderCopy<PS> wide_shader(ps);
         [[maybe_unused]] Tracer tracer = tracer_prototype;
 
         // Whole primitives in front of nothing: true when a primitive whose nearest depth is
@@ -528,15 +564,21 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                 const Float8 lane_x(simd::F32x8{0, 1, 2, 3, 0, 1, 2, 3});
                 const Float8 lane_y(simd::F32x8{0, 0, 0, 0, 1, 1, 1, 1});
                 for (int32_t y = y0 & ~1; y <= y1; y += 2) {
+                    // Lanes of the rectangle in this row pair: the top row (0x0F), the bottom (0xF0).
+                    const uint32_t rows = (y >= y0 ? 0x0Fu : 0u) | (y + 1 <= y1 ? 0xF0u : 0u);
                     for (int32_t x = x0 & ~3; x <= x1; x += 4) {
-                        const bool whole = x >= x0 && x + 3 <= x1 && y >= y0 && y + 1 <= y1;
                         if constexpr (Depth::kWide && Color::kWide) {
-                          if (whole) {
-                            // All eight pixels inside: depth, shader and blend on the whole block.
-                            uint32_t live = 0xFF;
+                          // A block inside the tile (always, but at a target whose size is not a
+                          // multiple of 4×2) goes through depth, shader and blend at once, its lanes
+                          // outside the rectangle masked off.
+                          if (x >= rect.x0 && x + 3 <= rect.x1 && y >= rect.y0 && y + 1 <= rect.y1) {
+                            uint32_t cols = 0;
+                            for (int c = 0; c < 4; ++c) cols |= (x + c >= x0 && x + c <= x1) ? (0x11u << c) : 0u;
+                            const uint32_t covered = rows & cols;
+                            uint32_t live = covered;
                             if constexpr (Depth::kEnabled) {
-                                live = depth.testWide(x, y, Float8(float(z)));
-                                st.fragmentsEarlyDepthKilled += uint64_t(8 - std::popcount(live));
+                                live &= depth.testWide(x, y, Float8(float(z)));
+                                st.fragmentsEarlyDepthKilled += uint64_t(std::popcount(covered & ~live));
                                 if (!live) continue;
                             }
                             Wide<V> in;
@@ -545,7 +587,7 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                             const Float8 j = Float8(float(y - r.box.y0)) + lane_y;
                             for (uint32_t k = 0; k < kVertexFloats<V>; ++k)
                                 f[k] = Float8(base[k]) + i * Float8(step_x[k]) + j * Float8(step_y[k]);
-                            const glm::vec<4, Float8> c = ps(in);
+                            const glm::vec<4, Float8> c = wide_shader(in);
                             const int n = std::popcount(live);
                             st.psInvocations += uint64_t(n);
                             st.helperInvocations += uint64_t(8 - n);
@@ -569,7 +611,7 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                         const Float8 j = Float8(float(y - r.box.y0)) + lane_y;
                         for (uint32_t k = 0; k < kVertexFloats<V>; ++k)
                             f[k] = Float8(base[k]) + i * Float8(step_x[k]) + j * Float8(step_y[k]);
-                        const glm::vec<4, Float8> c = ps(in);
+                        const glm::vec<4, Float8> c = wide_shader(in);
                         const int n = std::popcount(live);
                         st.psInvocations += uint64_t(n);
                         st.helperInvocations += uint64_t(8 - n);
@@ -599,7 +641,7 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                         }
                         Wide<V> in;
                         interpolateAttributesWide(ti, e, verts, x, y, z, in);
-                        const glm::vec<4, Float8> c = ps(in);
+                        const glm::vec<4, Float8> c = wide_shader(in);
                         const int n = std::popcount(live);
                         st.psInvocations += uint64_t(n);
                         st.helperInvocations += uint64_t(8 - n);
@@ -638,6 +680,95 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
             }
         };
 
+        // Deferred shading of an opaque draw (blending off, depth written): a pixel ends with the
+        // shader's output for the last of its fragments that passed the depth test, so a first pass
+        // runs the depth test alone and notes, per pixel, which triangle (its place in the tile's
+        // list) that fragment came from; a second shades those fragments only. The same bits as
+        // shading in order, since an eight-wide shader has no side effects, cannot discard and
+        // cannot write depth; the fragments a later one replaced are never shaded. Taken for tiles
+        // of two triangles or more (nothing to save with one) and none of another kind, whose 4×2
+        // blocks all lie inside the tile.
+        [[maybe_unused]] auto shadeDeferred = [&]() __attribute__((flatten)) {
+            if constexpr (kDeferrable) {
+                if (rect.x0 % 4 != 0 || (rect.x1 + 1) % 4 != 0 || rect.y0 % 2 != 0 || (rect.y1 + 1) % 2 != 0)
+                    return false;
+                uint32_t triangles = 0;
+                for (uint32_t c = 0; c < chunk_count; ++c) {
+                    for (const uint32_t entry : chunks[c].bins[tile]) {
+                        if (binKind(entry) != BinKind::Triangle) return false;
+                        ++triangles;
+                    }
+                }
+                if (triangles < 2) return false;
+                auto forEachTriangle = [&](auto&& visit) {
+                    uint32_t n = 0;
+                    for (uint32_t c = 0; c < chunk_count; ++c)
+                        for (const uint32_t entry : chunks[c].bins[tile])
+                            visit(chunks[c], chunks[c].triangles[binIndex(entry)], n++);
+                };
+                // owner[row][column] within the tile: the triangle whose fragment the pixel shows;
+                // ~0 where no fragment of this draw passed.
+                alignas(32) uint32_t owner[kTileSize][kTileSize];
+                std::fill_n(&owner[0][0], kTileSize * kTileSize, ~0u);
+                // Triangles with a fragment that passed: the others need no second pass.
+                static thread_local std::vector<uint8_t> passed_any;
+                passed_any.assign(triangles, 0);
+                uint64_t passed = 0;
+                forEachTriangle([&](const detail::Chunk<V>&, const TriangleSetup& t, uint32_t n) {
+                    const float lowest = std::min({t.z[0], t.z[1], t.z[2]});
+                    const float nearest = std::clamp(lowest - std::abs(lowest) * 0x1p-20f, min_depth, max_depth);
+                    if (occludedInTile(nearest)) return;
+                    rasterizeTriangleBlocks(t, edgeSteps(t), rect,
+                                            [&](int32_t x, int32_t y, uint32_t mask, const int64_t (&e)[3][8]) {
+                        const Float8 z = interpolateDepthWide(t, e, min_depth, max_depth);
+                        const uint32_t live = mask & depth.testWide(x, y, z);
+                        st.fragmentsEarlyDepthKilled += uint64_t(std::popcount(mask & ~live));
+                        if (!live) return;
+                        depth.writeWide(x, y, z, live);
+                        passed += uint64_t(std::popcount(live));
+                        passed_any[n] = 1;
+                        uint32_t* row = &owner[y - rect.y0][x - rect.x0];
+                        for (uint32_t m = live; m; m &= m - 1) {
+                            const int l = std::countr_zero(m);
+                            row[(l >> 2) * kTileSize + (l & 3)] = n;
+                        }
+                    });
+                });
+                uint64_t shaded = 0;
+                forEachTriangle([&](const detail::Chunk<V>& chunk, const TriangleSetup& t, uint32_t n) {
+                    if (!passed_any[n]) return;
+                    const V* const verts[3] = {&chunk.vertices[t.vertex[0]], &chunk.vertices[t.vertex[1]],
+                                               &chunk.vertices[t.vertex[2]]};
+                    const TriangleInterpolant<Real> ti(t);
+                    rasterizeTriangleBlocks(t, edgeSteps(t), rect,
+                                            [&](int32_t x, int32_t y, uint32_t mask, const int64_t (&e)[3][8]) {
+                        const uint32_t* row = &owner[y - rect.y0][x - rect.x0];
+                        simd::I32x8 ids;
+                        std::memcpy(&ids, row, 16);
+                        std::memcpy(reinterpret_cast<char*>(&ids) + 16, row + kTileSize, 16);
+                        const uint32_t live = mask & Mask8{ids == int32_t(n)}.bits();
+                        if (!live) return;
+                        const Float8 z = interpolateDepthWide(t, e, min_depth, max_depth);
+                        Wide<V> in;
+                        interpolateAttributesWide(ti, e, verts, x, y, z, in);
+                        const glm::vec<4, Float8> c = wide_shader(in);
+                        const int k = std::popcount(live);
+                        st.psInvocations += uint64_t(k);
+                        st.helperInvocations += uint64_t(8 - k);
+                        shaded += uint64_t(k);
+                        color.writeWide(x, y, c, live);
+                    });
+                });
+                st.fragmentsOverdrawSkipped += passed - shaded;
+                return true;
+            } else {
+                return false;
+            }
+        };
+        bool deferred = false;
+        if constexpr (kDeferrable) deferred = shadeDeferred();
+
+        if (!deferred)
         for (uint32_t c = 0; c < chunk_count; ++c) {
             const detail::Chunk<V>& chunk = chunks[c];
             for (const uint32_t entry : chunk.bins[tile]) {

@@ -35,6 +35,9 @@ struct PipelineStatistics {
     uint64_t fragmentsLateDepthKilled = 0;   // failed the depth test after it (reference mode only)
     uint64_t fragmentsDiscarded = 0;      // the pixel shader returned std::nullopt
     uint64_t fragmentsBlendNoOp = 0;      // blend could not change the pixel: not written
+    uint64_t fragmentsOverdrawSkipped = 0;  // passed the depth test, but a later fragment of the same
+                                          // opaque draw replaced them before they were shaded: never
+                                          // shaded (deferred shading, see Context::renderTiles)
     uint64_t helperInvocations = 0;       // pixel shader runs for quad helper lanes
     uint64_t derivativeReplays = 0;       // extra pixel shader runs to answer ddx/ddy
     uint64_t sortsAvoided = 0;            // draws whose blend is order-independent: no sort needed

@@ -10,7 +10,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 
+#include "raster/simd.hpp"
 #include "raster/stages/setup.hpp"
 
 namespace raster {
@@ -73,29 +75,53 @@ void rasterizeTriangle(const TriangleSetup& t, const EdgeSteps& s, const PixelRe
 // The same coverage walked in 4×2 blocks (x a multiple of 4, y even) for eight-wide shading:
 // visit(x, y, mask, e) with lane l at (x + l % 4, y + l / 4), mask its covered lanes and e[k][l]
 // the edge functions at each lane's centre (without the top-left bias).
+namespace detail {
+// Bit l set where lane l of the eight (two vectors of four) is >= 0.
+inline uint32_t nonNegativeBits(simd::I64x4 top, simd::I64x4 bottom) {
+#if defined(__AVX2__)
+    const simd::I64x4 t = top >= 0, b = bottom >= 0;
+    return uint32_t(_mm256_movemask_pd(_mm256_castsi256_pd(__m256i(t)))) |
+           uint32_t(_mm256_movemask_pd(_mm256_castsi256_pd(__m256i(b)))) << 4;
+#else
+    uint32_t bits = 0;
+    for (int l = 0; l < 4; ++l) bits |= uint32_t(top[l] >= 0) << l | uint32_t(bottom[l] >= 0) << (l + 4);
+    return bits;
+#endif
+}
+}  // namespace detail
+
 template <class Visit>
 void rasterizeTriangleBlocks(const TriangleSetup& t, const EdgeSteps& s, const PixelRect& tile, Visit&& visit) {
     const int32_t x0 = std::max(t.box.x0, tile.x0), x1 = std::min(t.box.x1, tile.x1);
     const int32_t y0 = std::max(t.box.y0, tile.y0), y1 = std::min(t.box.y1, tile.y1);
     if (x0 > x1 || y0 > y1) return;
     const int32_t bx0 = x0 & ~3, by0 = y0 & ~1;
+    // The edge functions of a block's lanes are its lane 0's plus a per-triangle offset: exact
+    // int64 arithmetic, four lanes to a vector (top row, bottom row).
+    simd::I64x4 top_offset[3], bottom_offset[3], bias[3];
     int64_t row[3];
-    for (int k = 0; k < 3; ++k) row[k] = edgeAt(t, k, bx0, by0);
+    for (int k = 0; k < 3; ++k) {
+        top_offset[k] = simd::I64x4{0, s.dx[k], 2 * s.dx[k], 3 * s.dx[k]};
+        bottom_offset[k] = top_offset[k] + s.dy[k];
+        bias[k] = simd::I64x4{} + t.bias[k];
+        row[k] = edgeAt(t, k, bx0, by0);
+    }
     for (int32_t y = by0; y <= y1; y += 2) {
         const uint32_t rows = (y >= y0 ? 0x0Fu : 0u) | (y + 1 <= y1 ? 0xF0u : 0u);
         int64_t e0[3] = {row[0], row[1], row[2]};
         for (int32_t x = bx0; x <= x1; x += 4) {
-            uint32_t cols = 0;
-            for (int c = 0; c < 4; ++c) cols |= (x + c >= x0 && x + c <= x1) ? (0x11u << c) : 0u;
+            uint32_t cols = 0xFF;
+            if (x < x0 || x + 3 > x1) {
+                cols = 0;
+                for (int c = 0; c < 4; ++c) cols |= (x + c >= x0 && x + c <= x1) ? (0x11u << c) : 0u;
+            }
             uint32_t mask = rows & cols;
-            int64_t e[3][8];
+            alignas(32) int64_t e[3][8];
             for (int k = 0; k < 3; ++k) {
-                uint32_t inside = 0;
-                for (int l = 0; l < 8; ++l) {
-                    e[k][l] = e0[k] + (l & 3) * s.dx[k] + (l >> 2) * s.dy[k];
-                    inside |= uint32_t(e[k][l] + t.bias[k] >= 0) << l;
-                }
-                mask &= inside;
+                const simd::I64x4 top = e0[k] + top_offset[k], bottom = e0[k] + bottom_offset[k];
+                std::memcpy(&e[k][0], &top, sizeof top);
+                std::memcpy(&e[k][4], &bottom, sizeof bottom);
+                mask &= detail::nonNegativeBits(top + bias[k], bottom + bias[k]);
             }
             if (mask) visit(x, y, mask, e);
             for (int k = 0; k < 3; ++k) e0[k] += 4 * s.dx[k];
