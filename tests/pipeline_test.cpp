@@ -474,6 +474,39 @@ TEST(PipelineStatisticsTest, ParticlesCountGeometryShaderWork) {
     EXPECT_TRUE(ctx.drawStatistics() == draw) << "the reset leaves the last draw's statistics";
 }
 
+TEST(ContextClear, BandsOnAnyThreadCountGiveTheTargetsOwnClear) {
+    // Odd sizes (a last band of 7 rows), both colour formats, UNORM rounding and clamping.
+    const glm::vec4 color(0.2f, 1.5f, -0.25f, 0.5f);
+    for (const unsigned threads : {1u, 2u, 3u}) {
+        ContextOptions options;
+        options.threads = threads;
+        Context ctx(options);
+        for (const Format format : {Format::R8G8B8A8_UNORM, Format::R32G32B32A32_FLOAT}) {
+            RenderTarget expected(37, 71, format), actual(37, 71, format);
+            expected.store(3, 4, glm::vec4(0.9f));
+            actual.store(3, 4, glm::vec4(0.9f));
+            expected.clear(color);
+            ctx.clearRenderTarget(actual, color);
+            EXPECT_TRUE(actual == expected) << threads << " threads";
+            EXPECT_EQ(actual.load(36, 70), expected.load(36, 70));
+        }
+        DepthTarget expected(37, 71), actual(37, 71);
+        expected.clear(0.25f);
+        ctx.clearDepthTarget(actual, 0.25f);
+        EXPECT_TRUE(actual == expected) << threads << " threads";
+        EXPECT_EQ(actual.load(36, 70), 0.25f);
+    }
+    RenderTarget rgba(5, 3);
+    rgba.clear(color);
+    EXPECT_EQ(rgba.rgba8()[4 * 14 + 0], 51);   // 0.2 · 255 = 51
+    EXPECT_EQ(rgba.rgba8()[4 * 14 + 1], 255);  // clamped
+    EXPECT_EQ(rgba.rgba8()[4 * 14 + 2], 0);
+    EXPECT_EQ(rgba.rgba8()[4 * 14 + 3], 128);  // 127.5 rounds up
+    rgba.clearRows(glm::vec4(1.0f), 2, 100);   // clipped to the last row
+    EXPECT_EQ(rgba.load(0, 1), rgba.load(4, 0));
+    EXPECT_EQ(rgba.load(2, 2), glm::vec4(1.0f));
+}
+
 TEST(PipelineStatisticsTest, ToStringNamesEveryCounter) {
     PipelineStatistics s;
     s.gsPrimitives = 12345;

@@ -50,8 +50,8 @@ const SceneCamera kParticlesCamera{{0, 0.3f, 4}, {0, 0, 0}};
 const SceneCamera kFogCamera{{0, 1.5f, 6}, {0, 0.5f, -10}};
 
 void beginFrame(Context& context, RenderTarget& color, DepthTarget& depth) {
-    color.clear({0, 0, 0, 1});
-    depth.clear(1.0f);
+    context.clearRenderTarget(color, {0, 0, 0, 1});
+    context.clearDepthTarget(depth, 1.0f);
     context.setRenderTargets(&color, &depth);
     context.setViewport({0, 0, float(color.width()), float(color.height()), 0, 1});
     RasterizerState rs;

@@ -200,6 +200,11 @@ public:
         setRenderTargets(target ? std::span<RenderTarget* const>(one) : std::span<RenderTarget* const>(), depth);
     }
 
+    // D3D11's ClearRenderTargetView and ClearDepthStencilView (depth only): as target.clear(), on
+    // the Context's threads, a band of rows each; the same bytes for any thread count.
+    void clearRenderTarget(RenderTarget& target, const glm::vec4& color);
+    void clearDepthTarget(DepthTarget& target, float depth);
+
     const RasterizerState& rasterizerState() const { return rasterizer_; }
     const Viewport& viewport() const { return viewport_; }
     const BlendState& blendState() const { return blend_; }

@@ -28,7 +28,10 @@ public:
     bool empty() const { return width_ == 0; }
 
     // Every pixel set to `color`, converted by the format's rule (UNORM clamps and rounds).
-    void clear(const glm::vec4& color);
+    void clear(const glm::vec4& color) { clearRows(color, 0, height_); }
+    // Rows [firstRow, firstRow + rowCount) only (clipped to the target), as clear() sets them;
+    // Context::clearRenderTarget clears bands of rows on its threads with it.
+    void clearRows(const glm::vec4& color, uint32_t firstRow, uint32_t rowCount);
     // One pixel as the shader would read it (UNORM -> n/255). x < width, y < height.
     glm::vec4 load(uint32_t x, uint32_t y) const;
     // One pixel written with the format's conversion.
@@ -64,7 +67,8 @@ public:
     uint32_t height() const { return height_; }
     bool empty() const { return width_ == 0; }
 
-    void clear(float depth);
+    void clear(float depth) { clearRows(depth, 0, height_); }
+    void clearRows(float depth, uint32_t firstRow, uint32_t rowCount);  // as RenderTarget::clearRows
     float load(uint32_t x, uint32_t y) const { return depth_[size_t(y) * width_ + x]; }
     void store(uint32_t x, uint32_t y, float depth) { depth_[size_t(y) * width_ + x] = depth; }
     float* data() { return depth_.data(); }
