@@ -176,6 +176,32 @@ TEST(FastMath, LimitsAndSpecialValues) {
     EXPECT_TRUE(std::isnan(fastExp(std::nanf(""))));
     EXPECT_EQ(fastExp(-100.0f), 0.0f);
     EXPECT_EQ(fastExpm1(1e-30f), 1e-30f);
+    // expm1 clamps its argument at −20 (where it is −1 to float precision) and lets NaN through.
+    EXPECT_TRUE(std::isnan(fastExpm1(std::nanf(""))));
+    EXPECT_TRUE(std::isnan(fastExpm1(Float8(std::nanf("")))[5]));
+    EXPECT_EQ(fastExpm1(100.0f), inf);
+    EXPECT_EQ(fastExpm1(88.8f), inf);
+    for (float x : {-20.0f, -20.01f, -25.0f, -87.5f, -1e30f}) {
+        EXPECT_EQ(fastExpm1(x), -1.0f) << x;
+        EXPECT_EQ(fastExpm1(Float8(x))[3], -1.0f) << x;
+    }
+    for (float x : {-17.0f, -19.99f}) EXPECT_LE(ulps(fastExpm1(x), std::expm1(x)), 2) << x;
+}
+
+TEST(Float8, BroadcastKeepsTheSignOfZero) {
+    EXPECT_TRUE(std::signbit(Float8(-0.0f)[0]));
+    EXPECT_TRUE(std::signbit(Float8(-0.0f)[7]));
+    EXPECT_EQ(toFloat8(simd::F64x4{1.0, -0.0, 0.1, 1e300}, simd::F64x4{-2.5, 3.0, 1e-300, -1e300})[2], 0.1f);
+}
+
+TEST(Float8, MinMaxReturnTheSecondOperandForNaN) {
+    const float nan = std::nanf("");
+    EXPECT_EQ(max(Float8(nan), Float8(0.0f))[0], 0.0f);
+    EXPECT_TRUE(std::isnan(max(Float8(0.0f), Float8(nan))[0]));
+    EXPECT_EQ(min(Float8(nan), Float8(1.0f))[0], 1.0f);
+    EXPECT_TRUE(std::isnan(min(Float8(1.0f), Float8(nan))[0]));
+    EXPECT_EQ(floor(Float8(-1.5f))[1], -2.0f);
+    EXPECT_EQ(floor(Float8(2.0f))[1], 2.0f);
 }
 
 TEST(FastMath, EightWideEqualsScalar) {

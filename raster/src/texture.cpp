@@ -251,7 +251,7 @@ glm::vec4 Texture2D::SampleGrad(const SamplerState& s, glm::vec2 uv, glm::vec2 d
     return sampleAtLod<float>(s, uv, lodFromGradients<float>(ddx, ddy));
 }
 
-glm::vec<4, Float8> Texture2D::sampleLanes(const SamplerState& s, const glm::vec<2, Float8>& uv) const {
+glm::vec<4, Float8> Texture2D::sampleLanes(SamplerState s, glm::vec<2, Float8> uv) const {
     glm::vec<4, Float8> out;
     const bool lod_matters = levels_.size() > 1 || s.minFilter != s.magFilter;
     for (int lane = 0; lane < 8; ++lane) {

@@ -406,18 +406,9 @@ struct ReferenceModeGuard {
 namespace detail {
 // A copy of a trivially copyable shader (by reference otherwise: a shader that owns resources is
 // still called, only without the copy's benefit).
-template <class PS, bool kCopy = std::is_trivially_copyable_v<PS>>
-struct WideShaderCopy {
-    PS value;
-    explicit WideShaderCopy(const PS& ps) : value(ps) {}
-    template <class In>
-    [[gnu::always_inline]] auto operator()(const In& in) const {
-        return value(in);
-    }
-};
 template <class PS>
-struct WideShaderCopy<PS, false> {
-    const PS& value;
+struct WideShaderCopy {
+    std::conditional_t<std::is_trivially_copyable_v<PS>, PS, const PS&> value;
     explicit WideShaderCopy(const PS& ps) : value(ps) {}
     template <class In>
     [[gnu::always_inline]] auto operator()(const In& in) const {
@@ -481,6 +472,13 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                 }
             }
             return false;
+        };
+
+        // A depth no fragment of triangle t lies in front of: interpolated depths stay within the
+        // vertices' (to double rounding, far below the 2^-20 margin) and are clamped to the viewport.
+        auto nearestDepth = [&](const TriangleSetup& t) {
+            const float lowest = std::min({t.z[0], t.z[1], t.z[2]});
+            return std::clamp(lowest - std::abs(lowest) * 0x1p-20f, min_depth, max_depth);
         };
 
         // The output merger for one shaded fragment.
@@ -559,42 +557,64 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
         [[maybe_unused]] auto shadeRectWide = [&](const RectSetup& r, const float* base, const float* step_x,
                                                   const float* step_y, Real z) __attribute__((flatten)) {
             if constexpr (kWide) {
-                const int32_t x0 = std::max(r.box.x0, rect.x0), x1 = std::min(r.box.x1, rect.x1);
-                const int32_t y0 = std::max(r.box.y0, rect.y0), y1 = std::min(r.box.y1, rect.y1);
+                constexpr uint32_t kN = kVertexFloats<V>;
+                // What every block reads, in locals: the targets are written through uint8_t and float
+                // pointers, which may alias anything, so through `rect`, `base` or `depth` the compiler
+                // would load it again for every block.
+                const PixelRect tile = rect;
+                [[maybe_unused]] const Depth depth_here = depth;
+                [[maybe_unused]] const Color color_here = color;
+                const int32_t x0 = std::max(r.box.x0, tile.x0), x1 = std::min(r.box.x1, tile.x1);
+                const int32_t y0 = std::max(r.box.y0, tile.y0), y1 = std::min(r.box.y1, tile.y1);
+                const int32_t bx = r.box.x0, by = r.box.y0;
+                Float8 plane[kN], plane_x[kN], plane_y[kN];
+                for (uint32_t k = 0; k < kN; ++k)
+                    plane[k] = Float8(base[k]), plane_x[k] = Float8(step_x[k]), plane_y[k] = Float8(step_y[k]);
                 const Float8 lane_x(simd::F32x8{0, 1, 2, 3, 0, 1, 2, 3});
                 const Float8 lane_y(simd::F32x8{0, 0, 0, 0, 1, 1, 1, 1});
+                const Float8 z8 = Float8(float(z));
+                uint64_t invocations = 0, helpers = 0, early_killed = 0, no_ops = 0;
                 for (int32_t y = y0 & ~1; y <= y1; y += 2) {
                     // Lanes of the rectangle in this row pair: the top row (0x0F), the bottom (0xF0).
                     const uint32_t rows = (y >= y0 ? 0x0Fu : 0u) | (y + 1 <= y1 ? 0xF0u : 0u);
+                    // attribute = (base + i·step_x) + j·step_y, the scalar path's order; j·step_y per row.
+                    const Float8 j = Float8(float(y - by)) + lane_y;
+                    Float8 row_part[kN];
+                    for (uint32_t k = 0; k < kN; ++k) row_part[k] = j * plane_y[k];
+                    auto inputs = [&](int32_t x) {
+                        const Float8 i = Float8(float(x - bx)) + lane_x;
+                        Float8 f[kN];
+                        for (uint32_t k = 0; k < kN; ++k) f[k] = plane[k] + i * plane_x[k] + row_part[k];
+                        Wide<V> in;
+                        static_assert(sizeof in == sizeof f);
+                        std::memcpy(static_cast<void*>(&in), f, sizeof f);
+                        return in;
+                    };
+                    const bool rows_in_tile = y >= tile.y0 && y + 1 <= tile.y1;
                     for (int32_t x = x0 & ~3; x <= x1; x += 4) {
                         if constexpr (Depth::kWide && Color::kWide) {
                           // A block inside the tile (always, but at a target whose size is not a
                           // multiple of 4×2) goes through depth, shader and blend at once, its lanes
                           // outside the rectangle masked off.
-                          if (x >= rect.x0 && x + 3 <= rect.x1 && y >= rect.y0 && y + 1 <= rect.y1) {
-                            uint32_t cols = 0;
-                            for (int c = 0; c < 4; ++c) cols |= (x + c >= x0 && x + c <= x1) ? (0x11u << c) : 0u;
+                          if (rows_in_tile && x >= tile.x0 && x + 3 <= tile.x1) {
+                            // Columns x..x+3 inside [x0, x1], in both rows.
+                            const int32_t skip_left = std::clamp(x0 - x, 0, 4), skip_right = std::clamp(x + 3 - x1, 0, 4);
+                            const uint32_t cols = ((0xFu << skip_left) & (0xFu >> skip_right) & 0xFu) * 0x11u;
                             const uint32_t covered = rows & cols;
                             uint32_t live = covered;
                             if constexpr (Depth::kEnabled) {
-                                live &= depth.testWide(x, y, Float8(float(z)));
-                                st.fragmentsEarlyDepthKilled += uint64_t(std::popcount(covered & ~live));
+                                live &= depth_here.testWide(x, y, z8);
+                                early_killed += uint64_t(std::popcount(covered & ~live));
                                 if (!live) continue;
                             }
-                            Wide<V> in;
-                            Float8* f = reinterpret_cast<Float8*>(&in);
-                            const Float8 i = Float8(float(x - r.box.x0)) + lane_x;
-                            const Float8 j = Float8(float(y - r.box.y0)) + lane_y;
-                            for (uint32_t k = 0; k < kVertexFloats<V>; ++k)
-                                f[k] = Float8(base[k]) + i * Float8(step_x[k]) + j * Float8(step_y[k]);
-                            const glm::vec<4, Float8> c = wide_shader(in);
+                            const glm::vec<4, Float8> c = wide_shader(inputs(x));
                             const int n = std::popcount(live);
-                            st.psInvocations += uint64_t(n);
-                            st.helperInvocations += uint64_t(8 - n);
-                            depth.writeWide(x, y, Float8(float(z)), live);
-                            const uint32_t noop = color.noOpWide(c) & live;
-                            st.fragmentsBlendNoOp += uint64_t(std::popcount(noop));
-                            if (live & ~noop) color.writeWide(x, y, c, live & ~noop);
+                            invocations += uint64_t(n);
+                            helpers += uint64_t(8 - n);
+                            depth_here.writeWide(x, y, z8, live);
+                            const uint32_t noop = color_here.noOpWide(c) & live;
+                            no_ops += uint64_t(std::popcount(noop));
+                            if (live & ~noop) color_here.writeWide(x, y, c, live & ~noop);
                             continue;
                           }
                         }
@@ -605,22 +625,20 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                                 live |= 1u << l;
                         }
                         if (!live) continue;
-                        Wide<V> in;
-                        Float8* f = reinterpret_cast<Float8*>(&in);
-                        const Float8 i = Float8(float(x - r.box.x0)) + lane_x;
-                        const Float8 j = Float8(float(y - r.box.y0)) + lane_y;
-                        for (uint32_t k = 0; k < kVertexFloats<V>; ++k)
-                            f[k] = Float8(base[k]) + i * Float8(step_x[k]) + j * Float8(step_y[k]);
-                        const glm::vec<4, Float8> c = wide_shader(in);
+                        const glm::vec<4, Float8> c = wide_shader(inputs(x));
                         const int n = std::popcount(live);
-                        st.psInvocations += uint64_t(n);
-                        st.helperInvocations += uint64_t(8 - n);
+                        invocations += uint64_t(n);
+                        helpers += uint64_t(8 - n);
                         for (uint32_t m = live; m; m &= m - 1) {
                             const int l = std::countr_zero(m);
                             merge(x + (l & 3), y + (l >> 2), z, glm::vec4(c.x[l], c.y[l], c.z[l], c.w[l]));
                         }
                     }
                 }
+                st.psInvocations += invocations;
+                st.helperInvocations += helpers;
+                st.fragmentsEarlyDepthKilled += early_killed;
+                st.fragmentsBlendNoOp += no_ops;
             }
         };
 
@@ -700,6 +718,9 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                     }
                 }
                 if (triangles < 2) return false;
+                // Locals, as in shadeRectWide: stores to the targets would otherwise reload them.
+                const Depth depth_here = depth;
+                const Color color_here = color;
                 auto forEachTriangle = [&](auto&& visit) {
                     uint32_t n = 0;
                     for (uint32_t c = 0; c < chunk_count; ++c)
@@ -715,23 +736,23 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                 passed_any.assign(triangles, 0);
                 uint64_t passed = 0;
                 forEachTriangle([&](const detail::Chunk<V>&, const TriangleSetup& t, uint32_t n) {
-                    const float lowest = std::min({t.z[0], t.z[1], t.z[2]});
-                    const float nearest = std::clamp(lowest - std::abs(lowest) * 0x1p-20f, min_depth, max_depth);
-                    if (occludedInTile(nearest)) return;
+                    if (occludedInTile(nearestDepth(t))) return;
                     rasterizeTriangleBlocks(t, edgeSteps(t), rect,
                                             [&](int32_t x, int32_t y, uint32_t mask, const int64_t (&e)[3][8]) {
                         const Float8 z = interpolateDepthWide(t, e, min_depth, max_depth);
-                        const uint32_t live = mask & depth.testWide(x, y, z);
+                        const uint32_t live = mask & depth_here.testWide(x, y, z);
                         st.fragmentsEarlyDepthKilled += uint64_t(std::popcount(mask & ~live));
                         if (!live) return;
-                        depth.writeWide(x, y, z, live);
+                        depth_here.writeWide(x, y, z, live);
                         passed += uint64_t(std::popcount(live));
                         passed_any[n] = 1;
                         uint32_t* row = &owner[y - rect.y0][x - rect.x0];
-                        for (uint32_t m = live; m; m &= m - 1) {
-                            const int l = std::countr_zero(m);
-                            row[(l >> 2) * kTileSize + (l & 3)] = n;
-                        }
+                        simd::I32x8 ids;
+                        std::memcpy(&ids, row, 16);
+                        std::memcpy(reinterpret_cast<char*>(&ids) + 16, row + kTileSize, 16);
+                        ids = select(Mask8::fromBits(live), Int8(int32_t(n)), Int8(ids)).v;
+                        std::memcpy(row, &ids, 16);
+                        std::memcpy(row + kTileSize, reinterpret_cast<const char*>(&ids) + 16, 16);
                     });
                 });
                 uint64_t shaded = 0;
@@ -756,7 +777,7 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                         st.psInvocations += uint64_t(k);
                         st.helperInvocations += uint64_t(8 - k);
                         shaded += uint64_t(k);
-                        color.writeWide(x, y, c, live);
+                        color_here.writeWide(x, y, c, live);
                     });
                 });
                 st.fragmentsOverdrawSkipped += passed - shaded;
@@ -777,13 +798,7 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                     case BinKind::Triangle: {
                         const TriangleSetup& t = chunk.triangles[index];
                         if constexpr (Tracer::kEnabled) tracer.primitive = t.primitiveId;
-                        {
-                            // Interpolated depths stay within the vertices' (to double rounding,
-                            // far below the 2^-20 margin) and are clamped to the viewport's range.
-                            const float lowest = std::min({t.z[0], t.z[1], t.z[2]});
-                            const float nearest = std::clamp(lowest - std::abs(lowest) * 0x1p-20f, min_depth, max_depth);
-                            if (occludedInTile(nearest)) break;
-                        }
+                        if (occludedInTile(nearestDepth(t))) break;
                         const V* const verts[3] = {&chunk.vertices[t.vertex[0]], &chunk.vertices[t.vertex[1]],
                                                    &chunk.vertices[t.vertex[2]]};
                         const TriangleInterpolant<Real> ti(t);

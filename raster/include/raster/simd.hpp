@@ -62,7 +62,9 @@ struct alignas(32) Float8 {
     simd::F32x8 v;
 
     Float8() = default;
-    Float8(float x) : v(simd::F32x8{} + x) {}  // NOLINT: broadcast, like a scalar in a vector expression
+    // Broadcast, like a scalar in a vector expression. Not `F32x8{} + x`: 0 + x is not x for x = −0,
+    // so the compiler must add, per call, and −0 would come out +0.
+    Float8(float x) : v(simd::F32x8{x, x, x, x, x, x, x, x}) {}  // NOLINT
     Float8(simd::F32x8 x) : v(x) {}            // NOLINT
     static Float8 load(const float* p) {
         Float8 r;
@@ -111,13 +113,50 @@ struct alignas(32) Int8 {
 inline Float8 select(Mask8 m, Float8 a, Float8 b) { return m.v ? a.v : b.v; }
 inline Int8 select(Mask8 m, Int8 a, Int8 b) { return m.v ? a.v : b.v; }
 inline int32_t min(int32_t a, int32_t b) { return a < b ? a : b; }
-inline Float8 min(Float8 a, Float8 b) { return a.v < b.v ? a.v : b.v; }
-inline Float8 max(Float8 a, Float8 b) { return a.v > b.v ? a.v : b.v; }
+// min(a, b) = a < b ? a : b and max(a, b) = a > b ? a : b, lane by lane: a NaN in either gives b.
+// That is exactly what MINPS and MAXPS do, but GCC only finds them without the NaN rule.
+inline Float8 min(Float8 a, Float8 b) {
+#if defined(__AVX__)
+    return simd::F32x8(_mm256_min_ps(__m256(a.v), __m256(b.v)));
+#else
+    return a.v < b.v ? a.v : b.v;
+#endif
+}
+inline Float8 max(Float8 a, Float8 b) {
+#if defined(__AVX__)
+    return simd::F32x8(_mm256_max_ps(__m256(a.v), __m256(b.v)));
+#else
+    return a.v > b.v ? a.v : b.v;
+#endif
+}
 inline Int8 min(Int8 a, Int8 b) { return a.v < b.v ? a.v : b.v; }
 inline Int8 max(Int8 a, Int8 b) { return a.v > b.v ? a.v : b.v; }
 // Truncation toward zero, as int(float).
 inline Int8 toInt(Float8 a) { return __builtin_convertvector(a.v, simd::I32x8); }
 inline Float8 toFloat(Int8 a) { return __builtin_convertvector(a.v, simd::F32x8); }
+// Eight doubles, lanes 0–3 then 4–7, each rounded to float as float(double) rounds it (to nearest,
+// ties to even). One conversion per half and one insert, where building the vector lane by lane
+// costs a dozen shuffles.
+inline Float8 toFloat8(simd::F64x4 lo, simd::F64x4 hi) {
+#if defined(__AVX__)
+    return simd::F32x8(_mm256_set_m128(_mm256_cvtpd_ps(__m256d(hi)), _mm256_cvtpd_ps(__m256d(lo))));
+#else
+    Float8 r;
+    for (int i = 0; i < 4; ++i) r.v[i] = float(lo[i]), r.v[4 + i] = float(hi[i]);
+    return r;
+#endif
+}
+
+// Largest integer ≤ a, as a float (exact for every float; NaN stays NaN).
+inline Float8 floor(Float8 a) {
+#if defined(__AVX__)
+    return simd::F32x8(_mm256_floor_ps(__m256(a.v)));
+#else
+    Float8 r;
+    for (int i = 0; i < 8; ++i) r.v[i] = __builtin_floorf(a.v[i]);
+    return r;
+#endif
+}
 inline Float8 sqrt(Float8 a) {
 #if defined(__AVX__)
     return simd::F32x8(_mm256_sqrt_ps(__m256(a.v)));
@@ -167,8 +206,17 @@ inline Float8 abs(Float8 a) { return simd::F32x8(simd::I32x8(a.v) & 0x7FFFFFFF);
 namespace detail {
 inline float bitsToFloat(int32_t i) { return __builtin_bit_cast(float, i); }
 inline Float8 bitsToFloat(Int8 i) { return simd::F32x8(i.v); }
-inline int32_t toIntRound(float a) { return int32_t(a + (a < 0.0f ? -0.5f : 0.5f)); }
-inline Int8 toIntRound(Float8 a) { return toInt(a + select(a < Float8(0.0f), Float8(-0.5f), Float8(0.5f))); }
+// To the nearest integer, ties to even (the default rounding mode; one CVTPS2DQ eight wide).
+inline int32_t toIntRound(float a) { return int32_t(__builtin_rintf(a)); }
+inline Int8 toIntRound(Float8 a) {
+#if defined(__AVX__)
+    return simd::I32x8(_mm256_cvtps_epi32(__m256(a.v)));
+#else
+    Int8 r;
+    for (int i = 0; i < 8; ++i) r.v[i] = int32_t(__builtin_rintf(a.v[i]));
+    return r;
+#endif
+}
 inline float toFloatI(int32_t i) { return float(i); }
 inline Float8 toFloatI(Int8 i) { return toFloat(i); }
 inline int32_t halfOf(int32_t k) { return k >> 1; }  // arithmetic shift: floor(k / 2)
@@ -181,8 +229,9 @@ auto expReduce(T x) {
     const auto k = toIntRound(kf);
     const T k_real = toFloatI(k);
     const T r = (x - k_real * T(0.693359375f)) - k_real * T(-2.12194440e-4f);
+    // Degree 7: the next term, r^8/8!, is below 5.3e-9 for |r| ≤ ln2/2, a tenth of float's half ulp.
     const T p = r * (T(1.0f) + r * (T(0.5f) + r * (T(1.0f / 6.0f) + r * (T(1.0f / 24.0f) + r * (T(1.0f / 120.0f) +
-                r * (T(1.0f / 720.0f) + r * (T(1.0f / 5040.0f) + r * T(1.0f / 40320.0f))))))));
+                r * (T(1.0f / 720.0f) + r * T(1.0f / 5040.0f)))))));
     return std::make_tuple(k, p);
 }
 }  // namespace detail
@@ -202,13 +251,15 @@ T fastExp(T x) {
 
 template <class T>
 T fastExpm1(T x) {
-    const T xc = min(max(x, T(-104.0f)), T(89.0f));
+    // Below −20 the result rounds to −1 (e^−20 is 2e−9, under half an ulp of 1), so clamping there
+    // gives −1 without a select. The clamp's operand order lets a NaN through (min and max return
+    // their second operand when one is NaN), and NaN then propagates through the arithmetic.
+    const T xc = min(T(89.0f), max(T(-20.0f), x));
     auto [k, p] = detail::expReduce(xc);
     const auto kk = min(k, decltype(k)(127));
-    const T two_k = detail::bitsToFloat((kk + 127) << 23);  // k ≥ −150 here: flushed to 0 below −126
+    const T two_k = detail::bitsToFloat((kk + 127) << 23);
     const T result = two_k * p + (two_k - T(1.0f));
-    const T inf(__builtin_inff());
-    return select(x < T(-87.3f), T(-1.0f), select(x > T(88.72f), inf, select(x != x, x, result)));
+    return select(x > T(88.72f), T(__builtin_inff()), result);
 }
 
 inline float exp(float a) { return inReferenceMode() ? __builtin_expf(a) : fastExp(a); }

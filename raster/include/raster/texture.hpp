@@ -133,7 +133,9 @@ class Texture2D {
     template <class T>
     glm::vec4 sampleAtLod(const SamplerState& sampler, glm::vec2 uv, T lambda) const;
     glm::vec4 sampleImplicitLod(const SamplerState& sampler, glm::vec2 uv) const;
-    glm::vec<4, Float8> sampleLanes(const SamplerState& sampler, const glm::vec<2, Float8>& uv) const;
+    // By value: a reference would let the shader's input struct and the sampler escape, and the
+    // pixel loop would then keep them in memory and reload them after every store to a target.
+    glm::vec<4, Float8> sampleLanes(SamplerState sampler, glm::vec<2, Float8> uv) const;
 
     // Bilinear footprints for the eight-wide clamp path: for every texel coordinate pair (i, j) in
     // [−1, w−1] × [−1, h−1], the four clamped texels (i, j) (i+1, j) (i, j+1) (i+1, j+1) as 16 bytes,
@@ -311,14 +313,10 @@ inline glm::vec4 Texture2D::Sample(const SamplerState& sampler, glm::vec2 uv) co
 namespace detail {
 
 inline Float8 clampTexelCoord8(Float8 a) {
-    // As clampTexelCoord: NaN fails both comparisons and lands on the low end.
-    return select(a > Float8(-kMaxTexelCoord), select(a < Float8(kMaxTexelCoord), a, Float8(kMaxTexelCoord)),
-                  Float8(-kMaxTexelCoord));
+    // As clampTexelCoord: NaN lands on the low end (max(NaN, lo) is lo).
+    return min(max(a, Float8(-kMaxTexelCoord)), Float8(kMaxTexelCoord));
 }
-inline Int8 floorToInt8(Float8 a) {
-    const Int8 i = toInt(a);
-    return select(toFloat(i) > a, i - Int8(1), i);
-}
+inline Int8 floorToInt8(Float8 a) { return toInt(floor(a)); }
 inline Int8 clampTexel8(Int8 i, int n) { return max(Int8(0), min(i, Int8(n - 1))); }
 
 // The four channels of eight RGBA8 texels, as n/255 (unorm8ToFloat's arithmetic).
@@ -352,19 +350,20 @@ template <class UV>
     }
     const Float8 a = detail::clampTexelCoord8(uv.x * w - Float8(0.5f));
     const Float8 b = detail::clampTexelCoord8(uv.y * h - Float8(0.5f));
-    const Int8 i = detail::floorToInt8(a), j = detail::floorToInt8(b);
-    const Float8 alpha = a - toFloat(i), beta = b - toFloat(j);
+    const Float8 fa = floor(a), fb = floor(b);
+    const Int8 i = toInt(fa), j = toInt(fb);
+    const Float8 alpha = a - fa, beta = b - fb;
 #if defined(__AVX2__)
     if (!footprints_.empty()) {
         // One 16-byte load per lane, then a transpose into one register per channel holding, per
         // lane, the channel's bytes of the four texels (00, 10, 01, 11).
         const Int8 ii = max(Int8(-1), min(i, Int8(level.width - 1))) + Int8(1);
         const Int8 jj = max(Int8(-1), min(j, Int8(level.height - 1))) + Int8(1);
-        alignas(32) int32_t index[8];
-        const Int8 flat = jj * Int8(level.width + 1) + ii;
-        std::memcpy(index, &flat.v, sizeof index);
+        // Byte offsets, unsigned so that each lane's address needs no sign extension.
+        const Int8 offset = (jj * Int8(level.width + 1) + ii) << 4;
+        const simd::U32x8 index = simd::U32x8(offset.v);
         const uint8_t* f = footprints_.data();
-        auto load = [&](int l) { return _mm_loadu_si128(reinterpret_cast<const __m128i*>(f + 16 * size_t(index[l]))); };
+        auto load = [&](int l) { return _mm_loadu_si128(reinterpret_cast<const __m128i*>(f + index[l])); };
         const __m256i by_channel = _mm256_setr_epi8(0, 4, 8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15, 0, 4, 8, 12, 1,
                                                     5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15);
         const __m256i y0 = _mm256_shuffle_epi8(_mm256_set_m128i(load(4), load(0)), by_channel);
@@ -377,10 +376,13 @@ template <class UV>
                                  simd::I32x8(_mm256_unpacklo_epi64(t1, t3)), simd::I32x8(_mm256_unpackhi_epi64(t1, t3))};
         const Float8 k(1.0f / 255.0f);
         auto texel = [&](int t) {  // t: 0 = (i, j), 1 = (i+1, j), 2 = (i, j+1), 3 = (i+1, j+1)
-            return glm::vec<4, Float8>(toFloat((channel[0] >> (8 * t)) & Int8(0xFF)) * k,
-                                       toFloat((channel[1] >> (8 * t)) & Int8(0xFF)) * k,
-                                       toFloat((channel[2] >> (8 * t)) & Int8(0xFF)) * k,
-                                       toFloat((channel[3] >> (8 * t)) & Int8(0xFF)) * k);
+            // Byte t of each 32-bit lane, zero-extended: one shuffle instead of a shift and a mask.
+            const int8_t z = -128, b = int8_t(t);
+            const __m256i pick = _mm256_setr_epi8(b, z, z, z, b + 4, z, z, z, b + 8, z, z, z, b + 12, z, z, z, b, z,
+                                                  z, z, b + 4, z, z, z, b + 8, z, z, z, b + 12, z, z, z);
+            auto byte = [&](int c) { return Int8(simd::I32x8(_mm256_shuffle_epi8(__m256i(channel[c].v), pick))); };
+            return glm::vec<4, Float8>(toFloat(byte(0)) * k, toFloat(byte(1)) * k, toFloat(byte(2)) * k,
+                                       toFloat(byte(3)) * k);
         };
         return detail::lerp8(detail::lerp8(texel(0), texel(1), alpha), detail::lerp8(texel(2), texel(3), alpha), beta);
     }

@@ -50,8 +50,8 @@ Mask8 depthPasses8(Float8 fragment, Float8 stored) {
 }
 // D3D's saturate with NaN -> 0, as detail::saturate in output_merger.hpp, lane by lane.
 inline Float8 saturate8(Float8 v) {
-    const Float8 m = select(Float8(0.0f) < v, v, Float8(0.0f));
-    return select(m < Float8(1.0f), m, Float8(1.0f));
+    // max first: max(NaN, 0) is 0, as saturate's NaN rule wants.
+    return min(max(v, Float8(0.0f)), Float8(1.0f));
 }
 inline Int8 toUnorm8x8(Float8 v) { return toInt(saturate8(v) * Float8(255.0f) + Float8(0.5f)); }
 }  // namespace detail

@@ -73,18 +73,18 @@ inline simd::F64x4 edgesToDouble(const int64_t* e) {
 // a time, so the same bits.
 inline Float8 interpolateDepthWide(const TriangleSetup& t, const int64_t (&e)[3][8], float min_depth,
                                    float max_depth) {
-    Float8 out;
+    simd::F64x4 half[2];
     for (int h = 0; h < 2; ++h) {
         const simd::F64x4 e0 = edgesToDouble(&e[0][4 * h]), e1 = edgesToDouble(&e[1][4 * h]),
                           e2 = edgesToDouble(&e[2][4 * h]);
         simd::F64x4 z = (e1 * t.z[0] + e2 * t.z[1] + e0 * t.z[2]) * t.invArea2;
-        const simd::F64x4 lo = simd::F64x4{} + double(min_depth), hi = simd::F64x4{} + double(max_depth);
+        const double dl = min_depth, dh = max_depth;
+        const simd::F64x4 lo{dl, dl, dl, dl}, hi{dh, dh, dh, dh};
         z = z < lo ? lo : z;  // std::clamp's order: below lo → lo, then above hi → hi
         z = hi < z ? hi : z;
-        const simd::F32x4 f = __builtin_convertvector(z, simd::F32x4);
-        for (int l = 0; l < 4; ++l) out.set(4 * h + l, f[l]);
+        half[h] = z;
     }
-    return out;
+    return toFloat8(half[0], half[1]);
 }
 
 // The barycentrics of the eight lanes: float(e) · invArea as barycentrics() computes it (the
@@ -92,9 +92,7 @@ inline Float8 interpolateDepthWide(const TriangleSetup& t, const int64_t (&e)[3]
 inline void barycentricsWide(const TriangleInterpolant<float>& ti, const int64_t (&e)[3][8], Float8 (&b)[3]) {
     for (int k = 0; k < 3; ++k) {
         const int edge = (k + 1) % 3;  // b0 from e1, b1 from e2, b2 from e0
-        const simd::F32x4 lo = __builtin_convertvector(edgesToDouble(&e[edge][0]), simd::F32x4);
-        const simd::F32x4 hi = __builtin_convertvector(edgesToDouble(&e[edge][4]), simd::F32x4);
-        b[k] = Float8(simd::F32x8{lo[0], lo[1], lo[2], lo[3], hi[0], hi[1], hi[2], hi[3]}) * Float8(ti.invArea);
+        b[k] = toFloat8(edgesToDouble(&e[edge][0]), edgesToDouble(&e[edge][4])) * Float8(ti.invArea);
     }
 }
 
