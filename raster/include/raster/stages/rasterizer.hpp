@@ -109,7 +109,29 @@ void rasterizeTriangleBlocks(const TriangleSetup& t, const EdgeSteps& s, const P
     for (int32_t y = by0; y <= y1; y += 2) {
         const uint32_t rows = (y >= y0 ? 0x0Fu : 0u) | (y + 1 <= y1 ? 0xF0u : 0u);
         int64_t e0[3] = {row[0], row[1], row[2]};
-        for (int32_t x = bx0; x <= x1; x += 4) {
+        // The blocks of this row pair that some lane of could be covered: for each edge, a block's
+        // largest lane is its right column (edge rising with x) or left column (falling), in the
+        // row whose value is larger; blocks before the first or after the last whose largest lane
+        // is ≥ 0 have mask 0 and are skipped without evaluating them (exact integer division).
+        int64_t first = 0, last = (x1 - bx0) / 4;  // block indices along the row
+        for (int k = 0; k < 3 && first <= last; ++k) {
+            const int64_t step = 4 * s.dx[k];  // per block
+            const int64_t largest = e0[k] + t.bias[k] + std::max<int64_t>(0, s.dy[k]) + (s.dx[k] > 0 ? 3 * s.dx[k] : 0);
+            if (step > 0) {
+                if (largest + first * step < 0) first = (-largest + step - 1) / step;
+            } else if (step < 0) {
+                if (largest + last * step < 0) last = largest < 0 ? -1 : largest / -step;
+            } else if (largest < 0) {
+                last = -1;
+            }
+        }
+        if (first > last) {
+            for (int k = 0; k < 3; ++k) row[k] += 2 * s.dy[k];
+            continue;
+        }
+        for (int k = 0; k < 3; ++k) e0[k] += first * 4 * s.dx[k];
+        const int32_t x_end = bx0 + int32_t(4 * last);
+        for (int32_t x = bx0 + int32_t(4 * first); x <= x_end; x += 4) {
             uint32_t cols = 0xFF;
             if (x < x0 || x + 3 > x1) {
                 cols = 0;
