@@ -414,6 +414,62 @@ TEST(FastBlender, AdditiveIsBitIdenticalToMergeFragment) {
     expectSameAsMergeFragment<BlendAdditiveRgba8>(BlendState::additive().renderTarget[0]);
 }
 
+// Additive blending on a UNORM target adds the same bytes to every destination: the source term is
+// rounded alone (in units of 1/255) and the destination byte added exactly, then clamped at 255. The
+// older n / 255 + s·a in float made the increment depend on n near ties. Away from ties, that is the
+// reference's exactly rounded sum.
+TEST(FastBlender, AdditiveIncrementDoesNotDependOnTheDestination) {
+    const std::vector<float> grid = sourceGrid();
+    const auto additive = BlendState::additive().renderTarget[0];
+    RenderTarget rt(1, 1), ref(1, 1);
+    int checked_against_reference = 0;
+    for (size_t i = 0; i < grid.size(); ++i) {
+        for (size_t j = 0; j < grid.size(); ++j) {
+            const glm::vec4 src(grid[i], grid[(i + 3) % grid.size()], grid[(i + j) % grid.size()], grid[j]);
+            uint8_t increment[4];
+            rt.rgba8()[0] = rt.rgba8()[1] = rt.rgba8()[2] = rt.rgba8()[3] = 0;
+            mergeFragment<float>(rt, 0, 0, additive, src, kSrc1, kFactor);
+            std::copy(rt.rgba8(), rt.rgba8() + 4, increment);
+            const glm::dvec4 s = glm::clamp(glm::dvec4(glm::isnan(src.x) ? 0.0f : src.x, glm::isnan(src.y) ? 0.0f : src.y,
+                                                       glm::isnan(src.z) ? 0.0f : src.z, glm::isnan(src.w) ? 0.0f : src.w),
+                                            0.0, 1.0);
+            for (int n = 0; n < 256; ++n) {
+                for (int c = 0; c < 4; ++c) rt.rgba8()[c] = ref.rgba8()[c] = uint8_t(n);
+                mergeFragment<float>(rt, 0, 0, additive, src, kSrc1, kFactor);
+                mergeFragment<double>(ref, 0, 0, additive, src, kSrc1, kFactor);
+                for (int c = 0; c < 4; ++c) {
+                    ASSERT_EQ(int(rt.rgba8()[c]), std::min(255, n + increment[c]))
+                        << "channel " << c << " src (" << src.x << ", " << src.y << ", " << src.z << ", " << src.w
+                        << ") dst " << n;
+                    const double units = s[c] * s.w * 255.0;
+                    if (std::abs(units - std::floor(units) - 0.5) > 1e-4) {
+                        ASSERT_EQ(rt.rgba8()[c], ref.rgba8()[c]) << "channel " << c << " units " << units << " dst " << n;
+                        ++checked_against_reference;
+                    }
+                }
+            }
+        }
+    }
+    EXPECT_GT(checked_against_reference, 1000000);
+    // Terms just below a tie (s·a·255 = 16.49999, 12.49997, 0.49999), where n / 255 + s·a in float
+    // rounded up to n + 17, n + 13, n + 1 (found by a random search): the reference's n + 16 etc.
+    struct Case {
+        float s, a;
+        int n, expected;
+    };
+    for (const Case k : {Case{0x1.0434ccp-3f, 0x1.04c036p-1f, 96, 112}, Case{0x1.d86fep-2f, 0x1.b33222p-4f, 193, 205},
+                         Case{0x1.33c0c2p-3f, 0x1.ab8fa6p-7f, 96, 96}}) {
+        for (int c = 0; c < 4; ++c) rt.rgba8()[c] = ref.rgba8()[c] = uint8_t(k.n);
+        mergeFragment<float>(rt, 0, 0, additive, {k.s, k.s, k.s, k.a}, kSrc1, kFactor);
+        mergeFragment<double>(ref, 0, 0, additive, {k.s, k.s, k.s, k.a}, kSrc1, kFactor);
+        EXPECT_EQ(int(rt.rgba8()[0]), k.expected) << k.s;
+        EXPECT_EQ(int(ref.rgba8()[0]), k.expected) << k.s;
+        uint8_t fast[4] = {uint8_t(k.n), uint8_t(k.n), uint8_t(k.n), uint8_t(k.n)};
+        BlendAdditiveRgba8::apply(fast, {k.s, k.s, k.s, k.a});
+        EXPECT_EQ(int(fast[0]), k.expected) << k.s;
+    }
+}
+
 TEST(FastBlender, AdditiveNoOpLeavesEveryDestinationUnchanged) {
     const std::vector<float> grid = sourceGrid();
     const auto additive = BlendState::additive().renderTarget[0];

@@ -273,12 +273,14 @@ glm::vec<4, Float8> Texture2D::sampleLanes(SamplerState s, glm::vec<2, Float8> u
 
 void Texture2D::buildFootprints() {
     footprints_.clear();
+    grid_ = {};
     const Level& level = levels_[0];
     if (format_ != Format::R8G8B8A8_UNORM || levels_.size() != 1 || level.width > kMaxFootprintSide ||
         level.height > kMaxFootprintSide)
         return;
     const int w = level.width, h = level.height;
     footprints_.resize(size_t(w + 1) * size_t(h + 1) * 16);
+    grid_ = {float(w), float(h), w - 1, h - 1, w + 1};
     auto texelBytes = [&](int x, int y, uint8_t* out) {
         x = std::clamp(x, 0, w - 1);
         y = std::clamp(y, 0, h - 1);

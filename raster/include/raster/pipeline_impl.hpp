@@ -564,6 +564,8 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                 const PixelRect tile = rect;
                 [[maybe_unused]] const Depth depth_here = depth;
                 [[maybe_unused]] const Color color_here = color;
+                // The shader too: its texture pointer and sampler then stay in registers.
+                const auto shader_here = wide_shader;
                 const int32_t x0 = std::max(r.box.x0, tile.x0), x1 = std::min(r.box.x1, tile.x1);
                 const int32_t y0 = std::max(r.box.y0, tile.y0), y1 = std::min(r.box.y1, tile.y1);
                 const int32_t bx = r.box.x0, by = r.box.y0;
@@ -597,17 +599,14 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                           // multiple of 4×2) goes through depth, shader and blend at once, its lanes
                           // outside the rectangle masked off.
                           if (rows_in_tile && x >= tile.x0 && x + 3 <= tile.x1) {
-                            // Columns x..x+3 inside [x0, x1], in both rows.
-                            const int32_t skip_left = std::clamp(x0 - x, 0, 4), skip_right = std::clamp(x + 3 - x1, 0, 4);
-                            const uint32_t cols = ((0xFu << skip_left) & (0xFu >> skip_right) & 0xFu) * 0x11u;
-                            const uint32_t covered = rows & cols;
+                            const uint32_t covered = rows & blockColumns(x, x0, x1);
                             uint32_t live = covered;
                             if constexpr (Depth::kEnabled) {
                                 live &= depth_here.testWide(x, y, z8);
                                 early_killed += uint64_t(std::popcount(covered & ~live));
                                 if (!live) continue;
                             }
-                            const glm::vec<4, Float8> c = wide_shader(inputs(x));
+                            const glm::vec<4, Float8> c = shader_here(inputs(x));
                             const int n = std::popcount(live);
                             invocations += uint64_t(n);
                             helpers += uint64_t(8 - n);
@@ -625,7 +624,7 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                                 live |= 1u << l;
                         }
                         if (!live) continue;
-                        const glm::vec<4, Float8> c = wide_shader(inputs(x));
+                        const glm::vec<4, Float8> c = shader_here(inputs(x));
                         const int n = std::popcount(live);
                         invocations += uint64_t(n);
                         helpers += uint64_t(8 - n);
@@ -721,6 +720,7 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                 // Locals, as in shadeRectWide: stores to the targets would otherwise reload them.
                 const Depth depth_here = depth;
                 const Color color_here = color;
+                const auto shader_here = wide_shader;
                 auto forEachTriangle = [&](auto&& visit) {
                     uint32_t n = 0;
                     for (uint32_t c = 0; c < chunk_count; ++c)
@@ -772,7 +772,7 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                         const Float8 z = interpolateDepthWide(t, e, min_depth, max_depth);
                         Wide<V> in;
                         interpolateAttributesWide(ti, e, verts, x, y, z, in);
-                        const glm::vec<4, Float8> c = wide_shader(in);
+                        const glm::vec<4, Float8> c = shader_here(in);
                         const int k = std::popcount(live);
                         st.psInvocations += uint64_t(k);
                         st.helperInvocations += uint64_t(8 - k);

@@ -149,6 +149,28 @@ struct ColorFast {
         Int8 old;
         std::memcpy(&old.v, row0, 16);
         std::memcpy(reinterpret_cast<char*>(&old.v) + 16, row1, 16);
+        if constexpr (std::is_same_v<Blender, BlendAdditiveRgba8>) {
+#if defined(__AVX2__)
+            // As BlendAdditiveRgba8::apply, in units of 1/255: the source term s·(255·a) rounded half
+            // up, then the destination byte added exactly with unsigned saturation (the clamp at 255).
+            const Float8 sa = detail::saturate8(c.w);
+            const Float8 sa255 = sa * Float8(255.0f), half(0.5f);
+            const Int8 r = toInt(detail::saturate8(c.x) * sa255 + half);
+            const Int8 g = toInt(detail::saturate8(c.y) * sa255 + half);
+            const Int8 b = toInt(detail::saturate8(c.z) * sa255 + half);
+            const Int8 a = toInt(sa * sa255 + half);
+            // Per 128-bit half (one row): bytes r0..r3 g0..g3 b0..b3 a0..a3, then transposed to pixels.
+            const __m256i planar = _mm256_packus_epi16(_mm256_packus_epi32(__m256i(r.v), __m256i(g.v)),
+                                                       _mm256_packus_epi32(__m256i(b.v), __m256i(a.v)));
+            const __m256i to_pixels = _mm256_setr_epi8(0, 4, 8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15, 0, 4, 8,
+                                                       12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15);
+            const Int8 sum = simd::I32x8(_mm256_adds_epu8(__m256i(old.v), _mm256_shuffle_epi8(planar, to_pixels)));
+            const Int8 out = select(Mask8::fromBits(mask), sum, old);
+            std::memcpy(row0, &out.v, 16);
+            std::memcpy(row1, reinterpret_cast<const char*>(&out.v) + 16, 16);
+            return;
+#endif
+        }
         Int8 r, g, b, a;
         if constexpr (std::is_same_v<Blender, BlendAdditiveRgba8>) {
             // As BlendAdditiveRgba8::apply: rgb = sat(s.rgb)·sat(s.a) + d.rgb, a = sat(s.a)² + d.a.

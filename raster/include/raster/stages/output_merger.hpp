@@ -152,6 +152,14 @@ inline uint8_t roundUnits255(double x) {
     return uint8_t(whole) + uint8_t(x - whole >= 0.5);
 }
 
+// Byte n plus the source term s · factor (both in [0, 1], so the term is too) in units of 1/255,
+// rounded to nearest with ties up, clamped at 255: n is exact, so this rounds the exact sum of n and
+// the float term once. The term is s · (factor · 255), the order the eight-wide blend uses.
+inline uint8_t addUnits255(uint8_t n, float s, float factor) {
+    const int units = int(s * (factor * 255.0f) + 0.5f);
+    return uint8_t(std::min(255, int(n) + units));
+}
+
 // The reference path for a UNORM target. In units of 1/255 the destination byte n is exactly n, the
 // clamped sources and constant scaled by 255 are exact in double, and so is every factor; n / 255 in
 // [0, 1] units is not, and was enough to round 24.5 (28 behind 12.5 % black) down to 24.
@@ -206,7 +214,9 @@ glm::vec<4, Real> blendColor(const RenderTargetBlendDesc& d, glm::vec<4, Real> s
 //  - R32G32B32A32_FLOAT: nothing is clamped;
 //  - a channel whose bit in d.renderTargetWriteMask is 0 keeps its value.
 // Real = float computes in float and rounds as floatToUnorm8 does (f * 255 + 0.5 in float, so a value a
-// hair below a tie can round up). Real = double is the reference: for UNORM it evaluates the blend in
+// hair below a tie can round up); where the op is Add and the destination factor One (the additive
+// blends), it rounds the source term alone in units of 1/255 and adds the destination byte exactly
+// (detail::addUnits255), which is both cheaper and closer to the reference. Real = double is the reference: for UNORM it evaluates the blend in
 // double in units of 1/255, where the destination byte n is exactly n, and rounds once, to nearest with
 // ties up. The stored byte is the exact result so rounded: the destination term is exact up to one
 // division by 255 and the source term is exact unless source and factor need more than 53 significant
@@ -228,12 +238,19 @@ void mergeFragment(RenderTarget& rt, uint32_t x, uint32_t y, const RenderTargetB
         } else {
             const glm::vec4 s = detail::saturate(src);
             glm::vec4 result = s;
-            if (d.blendEnable) {
-                const glm::vec4 dst(unorm8ToFloat(pixel[0]), unorm8ToFloat(pixel[1]), unorm8ToFloat(pixel[2]),
-                                    unorm8ToFloat(pixel[3]));
-                result = blendColor(d, s, detail::saturate(src1), dst, detail::saturate(factor));
-            }
+            const glm::vec4 s1 = detail::saturate(src1), f = detail::saturate(factor);
+            const glm::vec4 dst(unorm8ToFloat(pixel[0]), unorm8ToFloat(pixel[1]), unorm8ToFloat(pixel[2]),
+                                unorm8ToFloat(pixel[3]));
+            if (d.blendEnable) result = blendColor(d, s, s1, dst, f);
             for (int c = 0; c < 4; ++c) out[c] = floatToUnorm8(result[c]);
+            // Add with destination factor One keeps the destination byte n exact, as the reference
+            // does: the source term alone is rounded, in units of 1/255, and n added after.
+            if (d.blendEnable && d.blendOp == BlendOp::Add && d.destBlend == Blend::One) {
+                const glm::vec4 sf = detail::blendFactor(d.srcBlend, s, s1, dst, f, 1.0f);
+                for (int c = 0; c < 3; ++c) out[c] = detail::addUnits255(pixel[c], s[c], sf[c]);
+            }
+            if (d.blendEnable && d.blendOpAlpha == BlendOp::Add && d.destBlendAlpha == Blend::One)
+                out[3] = detail::addUnits255(pixel[3], s.w, detail::blendFactor(d.srcBlendAlpha, s, s1, dst, f, 1.0f).w);
         }
         for (int c = 0; c < 4; ++c)
             if (mask >> c & 1u) pixel[c] = out[c];
@@ -309,13 +326,20 @@ struct BlendAdditiveRgba8 {
     // s * s.a + d: the operations blendColor performs, in its order (its d * 1 is exact).
     static void apply(uint8_t* pixel, const glm::vec4& src) {
 #if defined(__SSE2__)
+        // detail::addUnits255 in every lane: s · (a · 255) + 0.5 truncated, then the destination
+        // bytes added with unsigned saturation (the clamp at 255).
         const __m128 s = detail::saturate4(_mm_loadu_ps(&src.x));
-        const __m128 alpha = _mm_shuffle_ps(s, s, _MM_SHUFFLE(3, 3, 3, 3));
-        detail::storeUnorm8x4(pixel, _mm_add_ps(_mm_mul_ps(s, alpha), detail::loadUnorm8x4(pixel)));
+        const __m128 alpha255 = _mm_mul_ps(_mm_shuffle_ps(s, s, _MM_SHUFFLE(3, 3, 3, 3)), _mm_set1_ps(255.0f));
+        const __m128i units = _mm_cvttps_epi32(_mm_add_ps(_mm_mul_ps(s, alpha255), _mm_set1_ps(0.5f)));
+        const __m128i words = _mm_packs_epi32(units, _mm_setzero_si128());
+        int32_t bits;
+        std::memcpy(&bits, pixel, 4);
+        bits = _mm_cvtsi128_si32(_mm_adds_epu8(_mm_packus_epi16(words, words), _mm_cvtsi32_si128(bits)));
+        std::memcpy(pixel, &bits, 4);
 #else
         const glm::vec4 s = detail::saturate(src);
         uint8_t out[4];
-        for (int c = 0; c < 4; ++c) out[c] = detail::toUnorm8Branchless(s[c] * s.w + unorm8ToFloat(pixel[c]));
+        for (int c = 0; c < 4; ++c) out[c] = detail::addUnits255(pixel[c], s[c], s.w);
         std::memcpy(pixel, out, 4);
 #endif
     }

@@ -90,6 +90,16 @@ inline uint32_t nonNegativeBits(simd::I64x4 top, simd::I64x4 bottom) {
 }
 }  // namespace detail
 
+// The lanes of the 4×2 block at columns x..x + 3 whose column lies in [x0, x1], in both rows
+// (lane bits as in simd.hpp: column c is bit c in the top row, c + 4 in the bottom). Two compares
+// and a well-predicted branch for a block inside the span, which is nearly every block.
+inline uint32_t blockColumns(int32_t x, int32_t x0, int32_t x1) {
+    if (x >= x0 && x + 3 <= x1) [[likely]]
+        return 0xFFu;
+    const uint32_t left = (0xFu << std::clamp(x0 - x, 0, 4)) & 0xFu, right = 0xFu >> std::clamp(x + 3 - x1, 0, 4);
+    return (left & right) * 0x11u;
+}
+
 template <class Visit>
 void rasterizeTriangleBlocks(const TriangleSetup& t, const EdgeSteps& s, const PixelRect& tile, Visit&& visit) {
     const int32_t x0 = std::max(t.box.x0, tile.x0), x1 = std::min(t.box.x1, tile.x1);
@@ -132,12 +142,7 @@ void rasterizeTriangleBlocks(const TriangleSetup& t, const EdgeSteps& s, const P
         for (int k = 0; k < 3; ++k) e0[k] += first * 4 * s.dx[k];
         const int32_t x_end = bx0 + int32_t(4 * last);
         for (int32_t x = bx0 + int32_t(4 * first); x <= x_end; x += 4) {
-            uint32_t cols = 0xFF;
-            if (x < x0 || x + 3 > x1) {
-                cols = 0;
-                for (int c = 0; c < 4; ++c) cols |= (x + c >= x0 && x + c <= x1) ? (0x11u << c) : 0u;
-            }
-            uint32_t mask = rows & cols;
+            uint32_t mask = rows & blockColumns(x, x0, x1);
             alignas(32) int64_t e[3][8];
             for (int k = 0; k < 3; ++k) {
                 const simd::I64x4 top = e0[k] + top_offset[k], bottom = e0[k] + bottom_offset[k];
