@@ -641,6 +641,20 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
             }
         };
 
+        // One 4×2 block of a triangle through an eight-wide shader: its attributes interpolated, the
+        // shader run, its invocations (lanes in `live`) and helper lanes counted.
+        [[maybe_unused]] auto shadeBlockWide = [&](const auto& shader, const TriangleInterpolant<Real>& ti,
+                                                   const int64_t (&e)[3][8], const auto& verts, int32_t x, int32_t y,
+                                                   Float8 z, uint32_t live) {
+            Wide<std::remove_cvref_t<decltype(*verts[0])>> in;
+            interpolateAttributesWide(ti, e, verts, x, y, z, in);
+            const glm::vec<4, Float8> c = shader(in);
+            const int n = std::popcount(live);
+            st.psInvocations += uint64_t(n);
+            st.helperInvocations += uint64_t(8 - n);
+            return c;
+        };
+
         // A triangle with a shader that runs eight wide: 4×2 blocks wholly inside the tile go
         // through depth, shader and blend at once; blocks on the tile's border go quad by quad.
         [[maybe_unused]] auto shadeTriangleWide = [&](const TriangleSetup& t, const TriangleInterpolant<Real>& ti,
@@ -656,12 +670,7 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                             st.fragmentsEarlyDepthKilled += uint64_t(std::popcount(mask & ~live));
                             if (!live) return;
                         }
-                        Wide<V> in;
-                        interpolateAttributesWide(ti, e, verts, x, y, z, in);
-                        const glm::vec<4, Float8> c = wide_shader(in);
-                        const int n = std::popcount(live);
-                        st.psInvocations += uint64_t(n);
-                        st.helperInvocations += uint64_t(8 - n);
+                        const glm::vec<4, Float8> c = shadeBlockWide(wide_shader, ti, e, verts, x, y, z, live);
                         depth.writeWide(x, y, z, live);
                         const uint32_t noop = color.noOpWide(c) & live;
                         st.fragmentsBlendNoOp += uint64_t(std::popcount(noop));
@@ -770,14 +779,8 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                         const uint32_t live = mask & Mask8{ids == int32_t(n)}.bits();
                         if (!live) return;
                         const Float8 z = interpolateDepthWide(t, e, min_depth, max_depth);
-                        Wide<V> in;
-                        interpolateAttributesWide(ti, e, verts, x, y, z, in);
-                        const glm::vec<4, Float8> c = shader_here(in);
-                        const int k = std::popcount(live);
-                        st.psInvocations += uint64_t(k);
-                        st.helperInvocations += uint64_t(8 - k);
-                        shaded += uint64_t(k);
-                        color_here.writeWide(x, y, c, live);
+                        color_here.writeWide(x, y, shadeBlockWide(shader_here, ti, e, verts, x, y, z, live), live);
+                        shaded += uint64_t(std::popcount(live));
                     });
                 });
                 st.fragmentsOverdrawSkipped += passed - shaded;
