@@ -661,20 +661,25 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                                                       const EdgeSteps& steps,
                                                       const V* const (&verts)[3]) __attribute__((flatten)) {
             if constexpr (kWide && Depth::kWide && Color::kWide) {
-                rasterizeTriangleBlocks(t, steps, rect, [&](int32_t x, int32_t y, uint32_t mask, const int64_t (&e)[3][8]) {
-                    if (x >= rect.x0 && x + 3 <= rect.x1 && y >= rect.y0 && y + 1 <= rect.y1) {
+                // Locals, as in shadeRectWide: stores to the targets would otherwise reload them.
+                const PixelRect tile = rect;
+                const Depth depth_here = depth;
+                const Color color_here = color;
+                const auto shader_here = wide_shader;
+                rasterizeTriangleBlocks(t, steps, tile, [&](int32_t x, int32_t y, uint32_t mask, const int64_t (&e)[3][8]) {
+                    if (x >= tile.x0 && x + 3 <= tile.x1 && y >= tile.y0 && y + 1 <= tile.y1) {
                         const Float8 z = interpolateDepthWide(t, e, min_depth, max_depth);
                         uint32_t live = mask;
                         if constexpr (Depth::kEnabled) {
-                            live &= depth.testWide(x, y, z);
+                            live &= depth_here.testWide(x, y, z);
                             st.fragmentsEarlyDepthKilled += uint64_t(std::popcount(mask & ~live));
                             if (!live) return;
                         }
-                        const glm::vec<4, Float8> c = shadeBlockWide(wide_shader, ti, e, verts, x, y, z, live);
-                        depth.writeWide(x, y, z, live);
-                        const uint32_t noop = color.noOpWide(c) & live;
+                        const glm::vec<4, Float8> c = shadeBlockWide(shader_here, ti, e, verts, x, y, z, live);
+                        depth_here.writeWide(x, y, z, live);
+                        const uint32_t noop = color_here.noOpWide(c) & live;
                         st.fragmentsBlendNoOp += uint64_t(std::popcount(noop));
-                        if (live & ~noop) color.writeWide(x, y, c, live & ~noop);
+                        if (live & ~noop) color_here.writeWide(x, y, c, live & ~noop);
                         return;
                     }
                     // On the border: the two 2×2 quads of the block, lane by lane.
