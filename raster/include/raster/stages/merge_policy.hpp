@@ -149,17 +149,19 @@ struct ColorFast {
         Int8 old;
         std::memcpy(&old.v, row0, 16);
         std::memcpy(reinterpret_cast<char*>(&old.v) + 16, row1, 16);
+        Int8 r, g, b, a;
         if constexpr (std::is_same_v<Blender, BlendAdditiveRgba8>) {
-#if defined(__AVX2__)
             // As BlendAdditiveRgba8::apply, in units of 1/255: the source term s·(255·a) rounded half
-            // up, then the destination byte added exactly with unsigned saturation (the clamp at 255).
+            // up, then the destination byte added exactly, clamped at 255.
             const Float8 sa = detail::saturate8(c.w);
             const Float8 sa255 = sa * Float8(255.0f), half(0.5f);
-            const Int8 r = toInt(detail::saturate8(c.x) * sa255 + half);
-            const Int8 g = toInt(detail::saturate8(c.y) * sa255 + half);
-            const Int8 b = toInt(detail::saturate8(c.z) * sa255 + half);
-            const Int8 a = toInt(sa * sa255 + half);
-            // Per 128-bit half (one row): bytes r0..r3 g0..g3 b0..b3 a0..a3, then transposed to pixels.
+            r = toInt(detail::saturate8(c.x) * sa255 + half);
+            g = toInt(detail::saturate8(c.y) * sa255 + half);
+            b = toInt(detail::saturate8(c.z) * sa255 + half);
+            a = toInt(sa * sa255 + half);
+#if defined(__AVX2__)
+            // Per 128-bit half (one row): bytes r0..r3 g0..g3 b0..b3 a0..a3, transposed to pixels and
+            // added with unsigned saturation.
             const __m256i planar = _mm256_packus_epi16(_mm256_packus_epi32(__m256i(r.v), __m256i(g.v)),
                                                        _mm256_packus_epi32(__m256i(b.v), __m256i(a.v)));
             const __m256i to_pixels = _mm256_setr_epi8(0, 4, 8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15, 0, 4, 8,
@@ -169,17 +171,11 @@ struct ColorFast {
             std::memcpy(row0, &out.v, 16);
             std::memcpy(row1, reinterpret_cast<const char*>(&out.v) + 16, 16);
             return;
+#else
+            const Int8 k255(255);
+            r = min(k255, r + (old & Int8(0xFF))), g = min(k255, g + ((old >> 8) & Int8(0xFF)));
+            b = min(k255, b + ((old >> 16) & Int8(0xFF))), a = min(k255, a + ((old >> 24) & Int8(0xFF)));
 #endif
-        }
-        Int8 r, g, b, a;
-        if constexpr (std::is_same_v<Blender, BlendAdditiveRgba8>) {
-            // As BlendAdditiveRgba8::apply: rgb = sat(s.rgb)·sat(s.a) + d.rgb, a = sat(s.a)² + d.a.
-            const Float8 k(1.0f / 255.0f);
-            const Float8 sa = detail::saturate8(c.w);
-            r = detail::toUnorm8x8(detail::saturate8(c.x) * sa + toFloat(old & Int8(0xFF)) * k);
-            g = detail::toUnorm8x8(detail::saturate8(c.y) * sa + toFloat((old >> 8) & Int8(0xFF)) * k);
-            b = detail::toUnorm8x8(detail::saturate8(c.z) * sa + toFloat((old >> 16) & Int8(0xFF)) * k);
-            a = detail::toUnorm8x8(sa * sa + toFloat(old >> 24) * k);
         } else {
             r = detail::toUnorm8x8(c.x), g = detail::toUnorm8x8(c.y), b = detail::toUnorm8x8(c.z);
             a = detail::toUnorm8x8(c.w);
