@@ -878,6 +878,20 @@ TEST_F(ViewerTest, ReferenceSolutionIsTheReferencePipelinesRender) {
     EXPECT_TRUE(last_solved_) << "K K shows the frame K asked for";
 }
 
+// raster view <lab>: K and J compare with the lab's solution without being told to.
+TEST_F(ViewerTest, LabIsComparedWithItsSolution) {
+    const std::vector<ImageRgba8> shots = run("J S K S", "billboards");
+    ASSERT_EQ(shots.size(), 2u);
+    const RenderTarget lab = direct({}, "billboards"), solution = direct({}, "billboards@solution");
+    EXPECT_EQ(shots[0].pixels, differenceImage(lab.toRgba8(), solution.toRgba8(), kWidth, kHeight));
+    expectSameImage(shots[1], solution, "K: the lab's solution");
+    EXPECT_TRUE(last_solved_);
+    const std::vector<std::string> lines = describeDifference(
+        compareImages(lab.toRgba8(), solution.toRgba8(), kWidth, kHeight), "scene billboards@solution");
+    ASSERT_FALSE(lines.empty());
+    EXPECT_TRUE(said(last_messages_, lines[0])) << lines[0];
+}
+
 TEST_F(ViewerTest, SolutionKeysWithoutASolutionSaySo) {
     const std::vector<ImageRgba8> shots = run("K S K J");
     ASSERT_EQ(shots.size(), 1u);

@@ -1,6 +1,7 @@
 #include "raster/scenes.hpp"
 
 #include <cmath>
+#include <map>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -37,19 +38,21 @@ glm::vec3 particlePosition(uint32_t i) {
     return p;
 }
 
-namespace {
-
-glm::mat4 projection(const SceneOptions& o) {
+glm::mat4 sceneProjection(const SceneOptions& o) {
     return glm::perspectiveRH_ZO(glm::radians(60.0f), float(o.width) / float(o.height), 0.1f, 100.0f);
 }
 
-glm::mat4 lookAt(const SceneCamera& c) { return glm::lookAtRH(c.eye, c.target, glm::vec3(0, 1, 0)); }
+glm::mat4 sceneView(const SceneCamera& c) { return glm::lookAtRH(c.eye, c.target, glm::vec3(0, 1, 0)); }
 
-// SCENES.md's cameras.
-const SceneCamera kParticlesCamera{{0, 0.3f, 4}, {0, 0, 0}};
-const SceneCamera kFogCamera{{0, 1.5f, 6}, {0, 0.5f, -10}};
+namespace {
 
-void beginFrame(Context& context, RenderTarget& color, DepthTarget& depth) {
+// SCENES.md's cameras. constexpr, so initialised before any lab's registration reads one.
+constexpr SceneCamera kParticlesCamera{{0, 0.3f, 4}, {0, 0, 0}};
+constexpr SceneCamera kFogCamera{{0, 1.5f, 6}, {0, 0.5f, -10}};
+
+}  // namespace
+
+void beginSceneFrame(Context& context, RenderTarget& color, DepthTarget& depth) {
     context.clearRenderTarget(color, {0, 0, 0, 1});
     context.clearDepthTarget(depth, 1.0f);
     context.setRenderTargets(&color, &depth);
@@ -59,57 +62,59 @@ void beginFrame(Context& context, RenderTarget& color, DepthTarget& depth) {
     context.setRasterizerState(rs);
 }
 
+ParticleSceneData::ParticleSceneData(const SceneOptions& o)
+    : texture(o.texture.empty() ? makeFireTexture() : Texture2D::fromPng(o.texture)), count(o.count) {
+    const glm::mat4 proj = sceneProjection(o);
+    viewProj = proj * sceneView(o.camera.value_or(kParticlesCamera));
+    const float h = 0.08f;
+    billboardSize = {h * proj[0][0], h * proj[1][1]};
+    occluderColor = glm::vec4(89, 140, 64, 255) / 255.0f;
+    const std::vector<glm::vec3> triangles = {{-0.6f, -1.2f, 0}, {0.6f, -1.2f, 0}, {0.6f, 0.4f, 0},
+                                              {-0.6f, -1.2f, 0}, {0.6f, 0.4f, 0},  {-0.6f, 0.4f, 0}};
+    occluder = VertexBuffer::create(triangles);
+    std::vector<glm::vec3> positions(o.count);
+    for (uint32_t i = 0; i < o.count; ++i) positions[i] = particlePosition(i);
+    particles = VertexBuffer::create(positions);
+    const InputElementDesc desc[] = {{"POSITION", 0, Format::R32G32B32_FLOAT, 0, 0}};
+    layout = InputLayout(desc);
+}
+
+namespace {
+
 class ParticlesScene final : public Scene {
 public:
-    explicit ParticlesScene(const SceneOptions& o) : texture_(o.texture.empty() ? makeFireTexture()
-                                                                                   : Texture2D::fromPng(o.texture)) {
-        const glm::mat4 view = lookAt(o.camera.value_or(kParticlesCamera));
-        const glm::mat4 proj = projection(o);
-        const glm::mat4 view_proj = proj * view;
-        const std::vector<glm::vec3> occluder = {{-0.6f, -1.2f, 0}, {0.6f, -1.2f, 0}, {0.6f, 0.4f, 0},
-                                                 {-0.6f, -1.2f, 0}, {0.6f, 0.4f, 0},  {-0.6f, 0.4f, 0}};
-        occluder_ = VertexBuffer::create(occluder);
-        std::vector<glm::vec3> particles(o.count);
-        for (uint32_t i = 0; i < o.count; ++i) particles[i] = particlePosition(i);
-        particles_ = VertexBuffer::create(particles);
-        const InputElementDesc desc[] = {{"POSITION", 0, Format::R32G32B32_FLOAT, 0, 0}};
-        layout_ = InputLayout(desc);
-        vs_occluder_.viewProj = view_proj;
-        ps_occluder_.color = glm::vec4(89, 140, 64, 255) / 255.0f;
-        gs_.viewProj = view_proj;
-        const float h = 0.08f;
-        gs_.billboardSize = {h * proj[0][0], h * proj[1][1]};
-        ps_fire_.billboardTexture = &texture_;
-        count_ = o.count;
+    explicit ParticlesScene(const SceneOptions& o) : data_(o) {
+        vs_occluder_.viewProj = data_.viewProj;
+        ps_occluder_.color = data_.occluderColor;
+        gs_.viewProj = data_.viewProj;
+        gs_.billboardSize = data_.billboardSize;
+        ps_fire_.billboardTexture = &data_.texture;
     }
     std::string_view name() const override { return "particles"; }
 
     void render(Context& context, RenderTarget& color, DepthTarget& depth) override {
-        beginFrame(context, color, depth);
-        context.setInputLayout(&layout_);
+        beginSceneFrame(context, color, depth);
+        context.setInputLayout(&data_.layout);
         // Draw 1: the occluder ("giraffe"), opaque, depth test and write.
         context.setDepthStencilState({true, true, ComparisonFunc::Less});
         context.setBlendState(BlendState::opaque());
-        context.setVertexBuffer(0, &occluder_);
+        context.setVertexBuffer(0, &data_.occluder);
         context.setPrimitiveTopology(Topology::TriangleList);
         context.draw(vs_occluder_, ps_occluder_, 6);
         // Draw 2: the particles, additive, depth test on, depth write off.
         context.setDepthStencilState(DepthStencilState::readOnly(ComparisonFunc::Less));
         context.setBlendState(BlendState::additive());
-        context.setVertexBuffer(0, &particles_);
+        context.setVertexBuffer(0, &data_.particles);
         context.setPrimitiveTopology(Topology::PointList);
-        context.draw(shaders::VsBillboard{}, gs_, ps_fire_, count_);
+        context.draw(shaders::VsBillboard{}, gs_, ps_fire_, data_.count);
     }
 
 private:
-    Texture2D texture_;
-    VertexBuffer occluder_, particles_;
-    InputLayout layout_;
+    ParticleSceneData data_;
     shaders::VsTransform vs_occluder_;
     shaders::PsConstant ps_occluder_;
     shaders::GsBillboard gs_;
     shaders::PsFire ps_fire_;
-    uint32_t count_ = 0;
 };
 
 struct LitVertexData {
@@ -145,8 +150,8 @@ public:
     explicit FogScene(const SceneOptions& o) {
         const SceneCamera camera = o.camera.value_or(kFogCamera);
         const glm::vec3 eye = camera.eye;
-        const glm::mat4 view = lookAt(camera);
-        const glm::mat4 view_proj = projection(o) * view;
+        const glm::mat4 view = sceneView(camera);
+        const glm::mat4 view_proj = sceneProjection(o) * view;
         std::vector<LitVertexData> v;
         const glm::vec3 up(0, 1, 0);
         pushTriangle(v, {-40, 0, 8}, {40, 0, 8}, {40, 0, -80}, up);
@@ -177,7 +182,7 @@ public:
     std::string_view name() const override { return "fog"; }
 
     void render(Context& context, RenderTarget& color, DepthTarget& depth) override {
-        beginFrame(context, color, depth);
+        beginSceneFrame(context, color, depth);
         context.setBlendState(BlendState::opaque());
         context.setPrimitiveTopology(Topology::TriangleList);
         context.setDepthStencilState({true, true, ComparisonFunc::Less});
@@ -200,14 +205,59 @@ private:
     shaders::PsSky ps_sky_;
 };
 
+// Filled before main by the labs' static registrations, so a function-local static: the order in
+// which translation units initialise is unspecified. Read-only once main runs.
+std::map<std::string, SceneEntry, std::less<>>& registry() {
+    static std::map<std::string, SceneEntry, std::less<>> entries;
+    return entries;
+}
+
+std::string knownScenes() {
+    std::string text;
+    for (const std::string& n : sceneNames()) text += (text.empty() ? "" : ", ") + n;
+    return text;
+}
+
+[[noreturn]] void unknownScene(std::string_view name) {
+    throw Error(ErrorCode::InvalidArgument, "unknown scene '" + std::string(name) + "' (known: " + knownScenes() + ")");
+}
+
 }  // namespace
 
-std::vector<std::string> sceneNames() { return {"particles", "fog"}; }
+void registerScene(SceneEntry entry) {
+    const std::string& n = entry.name;
+    RASTER_REQUIRE(!n.empty() && n.size() <= 64, InvalidArgument, "a registered scene needs a name of 1..64 characters");
+    for (char c : n)
+        RASTER_REQUIRE((c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' || c == '-' || c == '@',
+                       InvalidArgument, "scene name '" + n + "' may hold only a-z, 0-9, _, - and @");
+    RASTER_REQUIRE(n != "particles" && n != "fog" && !registry().contains(n), InvalidArgument,
+                   "scene '" + n + "' is registered twice (two labs of one name?)");
+    RASTER_REQUIRE(entry.make != nullptr, InvalidArgument, "scene '" + n + "' is registered without a factory");
+    registry().emplace(n, std::move(entry));
+}
+
+const SceneEntry* findRegisteredScene(std::string_view name) {
+    const auto it = registry().find(name);
+    return it == registry().end() ? nullptr : &it->second;
+}
+
+std::string solutionSceneOf(std::string_view name) {
+    if (name.find('@') != std::string_view::npos) return {};
+    std::string solution = std::string(name) + "@solution";
+    return findRegisteredScene(solution) ? solution : std::string();
+}
+
+std::vector<std::string> sceneNames() {
+    std::vector<std::string> names = {"particles", "fog"};
+    for (const auto& [name, entry] : registry()) names.push_back(name);
+    return names;
+}
 
 SceneCamera defaultCamera(std::string_view name) {
     if (name == "particles") return kParticlesCamera;
     if (name == "fog") return kFogCamera;
-    throw Error(ErrorCode::InvalidArgument, "unknown scene '" + std::string(name) + "' (known: particles, fog)");
+    if (const SceneEntry* entry = findRegisteredScene(name)) return entry->camera;
+    unknownScene(name);
 }
 
 std::unique_ptr<Scene> makeScene(std::string_view name, const SceneOptions& options) {
@@ -241,7 +291,11 @@ std::unique_ptr<Scene> makeScene(std::string_view name, const SceneOptions& opti
                        "cube count " + std::to_string(options.cubes) + " per side is above 1024");
         return std::make_unique<FogScene>(options);
     }
-    throw Error(ErrorCode::InvalidArgument, "unknown scene '" + std::string(name) + "' (known: particles, fog)");
+    const SceneEntry* entry = findRegisteredScene(name);
+    if (!entry) unknownScene(name);
+    std::unique_ptr<Scene> scene = entry->make(entry->name, options);
+    RASTER_CHECK(scene && scene->name() == entry->name);
+    return scene;
 }
 
 }  // namespace raster

@@ -1,6 +1,7 @@
-// raster render [scene...] [--out-dir D] [--width W] [--height H] [--reference] [--view]: renders
-// the lecture's scenes (all of them by default) to D/<scene>.png; with --view it then opens the
-// viewer on the first of them where a display exists (DISPLAY or WAYLAND_DISPLAY set).
+// raster render [scene...] [--out-dir D] [--width W] [--height H] [--reference] [--view] [--list]:
+// renders the lecture's scenes and the labs' (all of them by default) to D/<scene>.png; with --view
+// it then opens the viewer on the first of them where a display exists (DISPLAY or WAYLAND_DISPLAY
+// set). --list prints the scenes, one a line, and what each is.
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -26,9 +27,21 @@ int render(int argc, char** argv) {
         else if (a == "--height") options.height = parseUint(a, args.value(a), 1, RenderTarget::kMaxSize);
         else if (a == "--reference") reference = true;
         else if (a == "--view") view_after = true;
+        else if (a == "--list") {
+            for (const std::string& name : sceneNames()) {
+                const SceneEntry* entry = findRegisteredScene(name);
+                const char* title = name == "particles" ? "the lecture's fire billboards (../shared/bench/SCENES.md)"
+                                    : name == "fog"     ? "cubes on a ground plane in fog (../shared/bench/SCENES.md)"
+                                    : entry             ? entry->title.c_str()
+                                                        : "";
+                std::printf("%-24s %s\n", name.c_str(), title);
+            }
+            return 0;
+        }
         else if (a == "--help" || a == "-h") {
-            std::puts("usage: raster render [particles|fog ...] [--out-dir D] [--width W] [--height H] [--reference]\n"
-                      "                     [--view]  (then opens raster view on the first scene if a display exists)");
+            std::puts("usage: raster render [scene ...] [--out-dir D] [--width W] [--height H] [--reference]\n"
+                      "                     [--view]  (then opens raster view on the first scene if a display exists)\n"
+                      "       raster render --list    (the scenes: the lecture's, the labs' and their solutions)");
             return 0;
         } else if (a.starts_with("--")) {
             throw Error(ErrorCode::InvalidArgument, "unknown option '" + std::string(a) + "'");

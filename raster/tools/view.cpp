@@ -10,10 +10,12 @@ namespace raster::tools {
 namespace {
 
 constexpr const char* kUsage =
-    "usage: raster view particles|fog [--size WxH] [--count N] [--cubes M] [--fog constant|height]\n"
-    "                   [--threads T] [--reference] [--headless] [--script \"N N ] S\"]\n"
-    "                   [--screenshot-dir D] [--screenshot-window]\n"
-    "                   [--solution reference|<scene>|<file.png>]\n"
+    "usage: raster view <scene> [--size WxH] [--count N] [--cubes M] [--fog constant|height]\n"
+    "              [--threads T] [--reference] [--headless] [--script \"N N ] S\"]\n"
+    "              [--screenshot-dir D] [--screenshot-window]\n"
+    "              [--solution reference|<scene>|<file.png>]\n"
+    "  <scene>: particles, fog (the lecture's benchmark scenes) or a lab (labs/<name>/, see raster render\n"
+    "  --list).\n"
     "  Opens a window on the scene's framebuffer (default 1280x720). --script runs space-separated\n"
     "  keys first (also click:X,Y  drag:X0,Y0,X1,Y1  wheel:N  resize:WxH  wait); --headless runs it\n"
     "  on SDL's offscreen driver and exits. Screenshots (S, F12) save the framebuffer to\n"
@@ -22,7 +24,8 @@ constexpr const char* kUsage =
     "  render); O, X, L, G and V show views of the pipeline trace (frames are traced only for them).\n"
     "  --solution: what K shows and J compares the frame with - reference (this scene through the\n"
     "  reference pipeline), another scene (e.g. a lab's solution) at the same size, camera and step,\n"
-    "  or a PNG of the frame's size; rendered only while K or J is on.\n"
+    "  or a PNG of the frame's size; rendered only while K or J is on. A lab's default is its solution\n"
+    "  (<lab>@solution), when solutions/ was built.\n"
     "keys:\n";
 
 // "WxH" → width, height, each 1..RenderTarget::kMaxSize.

@@ -1,5 +1,7 @@
 // The lecture's scenes, as ../shared/bench/SCENES.md defines them to the last constant:
-// `particles` (fire billboards over an occluder) and `fog` (cubes on a ground plane in fog).
+// `particles` (fire billboards over an occluder) and `fog` (cubes on a ground plane in fog), and
+// the labs' scenes: each lab (labs/<name>/, see raster/lab.hpp) registers `<name>`, its solution
+// (solutions/<name>/) `<name>@solution`.
 // `raster bench`, `raster render`, the viewer and the tests all draw them through this interface.
 #pragma once
 
@@ -42,9 +44,51 @@ public:
 
 // Throws Error(InvalidArgument) for an unknown scene name or an option out of range.
 std::unique_ptr<Scene> makeScene(std::string_view name, const SceneOptions& options);
+// The lecture's scenes first, then the registered ones in name order.
 std::vector<std::string> sceneNames();
-// SCENES.md's camera of a scene. Throws Error(InvalidArgument) for an unknown scene name.
+// SCENES.md's camera of a scene, or a registered scene's. Throws Error(InvalidArgument) for an
+// unknown scene name.
 SceneCamera defaultCamera(std::string_view name);
+
+// ---- Registered scenes (the labs) -------------------------------------------------------------------
+// What makeScene needs to build a scene it does not know itself. `make` gets options already checked
+// for size and camera, and must return a scene whose name() is `name`.
+struct SceneEntry {
+    std::string name;
+    std::string title;  // one line for listings, e.g. "Lab: billboards and particles (lecture 11, part 3)"
+    SceneCamera camera;
+    std::unique_ptr<Scene> (*make)(const std::string& name, const SceneOptions& options) = nullptr;
+};
+// Adds a scene; usually called before main by RASTER_LAB (raster/lab.hpp). Throws
+// Error(InvalidArgument) for an empty name, a name already taken, one with characters other than
+// [a-z0-9_-@] or a null `make`.
+void registerScene(SceneEntry entry);
+// The registered entry of `name`, or nullptr (the lecture's own scenes are not registered).
+const SceneEntry* findRegisteredScene(std::string_view name);
+// The scene a lab's picture is compared with: "<name>@solution" when that is registered, else "".
+std::string solutionSceneOf(std::string_view name);
+
+// SCENES.md's camera conventions, for every scene: glm::perspectiveRH_ZO with a 60° vertical field of
+// view, the options' aspect, near 0.1 and far 100; glm::lookAtRH from eye to target with +y up.
+glm::mat4 sceneProjection(const SceneOptions& options);
+glm::mat4 sceneView(const SceneCamera& camera);
+
+// Clears colour to (0,0,0,1) and depth to 1, binds both, sets the whole-target viewport and no
+// culling: how every scene's frame begins (SCENES.md's conventions).
+void beginSceneFrame(Context& context, RenderTarget& color, DepthTarget& depth);
+
+// SCENES.md's particle scene as data, for the `particles` scene and the lab that rebuilds it: the
+// occluder (two triangles) and `count` particles, both POSITION R32G32B32_FLOAT in `layout`.
+struct ParticleSceneData {
+    explicit ParticleSceneData(const SceneOptions& options);
+    glm::mat4 viewProj;       // P·V for the options' camera (SCENES.md's when unset)
+    glm::vec2 billboardSize;  // h·P[0][0], h·P[1][1] for the sprites' world half-size h = 0.08
+    glm::vec4 occluderColor;  // (89, 140, 64, 255) / 255
+    Texture2D texture;        // makeFireTexture(), or the options' PNG
+    VertexBuffer occluder, particles;
+    InputLayout layout;
+    uint32_t count;
+};
 
 // The fire texture of SCENES.md: 64×64 RGBA8, texel (i, j): u = (i+½)/64, v = (j+½)/64,
 // r = 2·|(u,v) − ½|, s = clamp(1 − r, 0, 1)², RGBA = round(255·(1, 0.25 + 0.55s, 0.05 + 0.15s, 0.25s)).

@@ -57,7 +57,9 @@ std::string keyName(const SDL_Keysym& key, bool fly) {
 }  // namespace
 
 Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
-    // A bad --solution fails here, before SDL starts.
+    // A bad --solution fails here, before SDL starts. A lab is compared with its solution unless
+    // told otherwise.
+    if (options_.solution.empty()) options_.solution = solutionSceneOf(options_.scene);
     solution_ = parseSolution(options_.solution);
     if (solution_.kind == SolutionSource::Kind::Image) solution_image_ = readImageRgba8(solution_.name);
     camera_ = options_.sceneOptions.camera.value_or(defaultCamera(options_.scene));

@@ -50,7 +50,8 @@ struct ViewerOptions {
     std::string screenshotDir = ".";
     bool screenshotWindow = false;  // also save the window, text included, as <shot>-window.png
     // What K shows and J compares with: "reference" (this scene through the reference pipeline),
-    // a scene of sceneNames(), or a .png file; empty: none (parseSolution).
+    // a scene of sceneNames(), or a .png file; empty: a lab's own solution scene (solutionSceneOf),
+    // none for other scenes (parseSolution).
     std::string solution;
 };
 
