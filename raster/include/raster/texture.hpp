@@ -341,16 +341,25 @@ inline glm::vec<4, Float8> lerp8(const glm::vec<4, Float8>& x, const glm::vec<4,
     return {x.x + (y.x - x.x) * t, x.y + (y.y - x.y) * t, x.z + (y.z - x.z) * t, x.w + (y.w - x.w) * t};
 }
 
+// filterLevel's linear-filter coordinates, eight lanes: texel (i, j) is the footprint's top left,
+// α and β the weights of its right and lower neighbours, for a level of w × h texels.
+struct Bilinear8 {
+    Int8 i, j;
+    Float8 alpha, beta;
+};
+[[gnu::always_inline]] inline Bilinear8 bilinear8(const glm::vec<2, Float8>& uv, Float8 w, Float8 h) {
+    const Float8 a = clampTexelCoord8(uv.x * w - Float8(0.5f));
+    const Float8 b = clampTexelCoord8(uv.y * h - Float8(0.5f));
+    const Float8 fa = floor(a), fb = floor(b);
+    return {toInt(fa), toInt(fb), a - fa, b - fb};
+}
+
 }  // namespace detail
 
 #if defined(__AVX2__)
 [[gnu::always_inline]] inline glm::vec<4, Float8> Texture2D::sampleFootprints(const glm::vec<2, Float8>& uv) const {
     // filterLevel's linear filter with clamped addressing, lane by lane the same operations.
-    const Float8 a = detail::clampTexelCoord8(uv.x * Float8(grid_.width) - Float8(0.5f));
-    const Float8 b = detail::clampTexelCoord8(uv.y * Float8(grid_.height) - Float8(0.5f));
-    const Float8 fa = floor(a), fb = floor(b);
-    const Int8 i = toInt(fa), j = toInt(fb);
-    const Float8 alpha = a - fa, beta = b - fb;
+    const auto [i, j, alpha, beta] = detail::bilinear8(uv, Float8(grid_.width), Float8(grid_.height));
     // One 16-byte load per lane, then a transpose into one register per channel holding, per
     // lane, the channel's bytes of the four texels (00, 10, 01, 11).
     const Int8 ii = max(Int8(-1), min(i, Int8(grid_.maxI))) + Int8(1);
@@ -406,11 +415,7 @@ template <class UV>
         const Int8 y = detail::clampTexel8(detail::floorToInt8(detail::clampTexelCoord8(uv.y * h)), level.height);
         return detail::unpackRgba8(gather(texels, y * Int8(level.width) + x));
     }
-    const Float8 a = detail::clampTexelCoord8(uv.x * w - Float8(0.5f));
-    const Float8 b = detail::clampTexelCoord8(uv.y * h - Float8(0.5f));
-    const Float8 fa = floor(a), fb = floor(b);
-    const Int8 i = toInt(fa), j = toInt(fb);
-    const Float8 alpha = a - fa, beta = b - fb;
+    const auto [i, j, alpha, beta] = detail::bilinear8(uv, w, h);
     const Int8 x0 = detail::clampTexel8(i, level.width), x1 = detail::clampTexel8(i + Int8(1), level.width);
     const Int8 row0 = detail::clampTexel8(j, level.height) * Int8(level.width);
     const Int8 row1 = detail::clampTexel8(j + Int8(1), level.height) * Int8(level.width);
