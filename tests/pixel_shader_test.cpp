@@ -547,6 +547,66 @@ TEST(PixelShaderWide, DepthAndBarycentricsAreTheScalarBits) {
     }
 }
 
+// A triangle of one depth takes interpolateDepth's shortcut; inside the triangle (every edge
+// function >= 0, summing to area2) the formula gives the same bits, for depths of any size and sign
+// and for clamped ones, at the edge-function sizes of the documented bound.
+TEST(PixelShaderWide, FlatDepthIsTheFormulasBitsInsideTheTriangle) {
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    const float depths[] = {1.0f, 0.5f, 0.999999940f, 1e-30f, 1e-44f, -0.25f, 3e38f, 0.1f, 1.5f};
+    int checked = 0;
+    for (int trial = 0; trial < 4000; ++trial) {
+        TriangleSetup t{};
+        const int64_t bits = 8 + trial % 43;  // area2 from 2^8 to 2^50
+        t.area2 = (int64_t(1) << bits) + int64_t(unit(rng) * double(int64_t(1) << (bits - 1)));
+        t.invArea2 = 1.0 / double(t.area2);
+        const float z = trial % 3 == 0 ? float(unit(rng)) : depths[trial % std::size(depths)];
+        for (int k = 0; k < 3; ++k) t.z[k] = z;
+        const float lo = trial % 5 == 0 ? 0.25f : 0.0f, hi = trial % 7 == 0 ? 0.75f : 1.0f;
+        int64_t e[3][8];
+        for (int l = 0; l < 8; ++l) {
+            // A point inside: e0 + e1 + e2 = area2, each >= 0; now and then on a vertex or an edge.
+            const int64_t a = l == 0 ? 0 : int64_t(unit(rng) * double(t.area2));
+            const int64_t b = l == 1 ? t.area2 - a : int64_t(unit(rng) * double(t.area2 - a));
+            e[0][l] = a, e[1][l] = b, e[2][l] = t.area2 - a - b;
+        }
+        t.flatDepth = false;
+        const Float8 formula = interpolateDepthWide(t, e, lo, hi);
+        t.flatDepth = true;
+        const Float8 flat = interpolateDepthWide(t, e, lo, hi);
+        for (int l = 0; l < 8; ++l) {
+            ASSERT_EQ(std::bit_cast<uint32_t>(flat[l]), std::bit_cast<uint32_t>(formula[l]))
+                << "trial " << trial << " z " << z << " lane " << l;
+            ASSERT_EQ(std::bit_cast<uint32_t>(interpolateDepth<float>(t, e[0][l], e[1][l], e[2][l], lo, hi)),
+                      std::bit_cast<uint32_t>(formula[l]));
+            ++checked;
+        }
+    }
+    EXPECT_EQ(checked, 32000);
+}
+
+// setupTriangle marks a triangle flat only for three identical finite non-zero depths.
+TEST(PixelShaderWide, SetupMarksFlatDepthOnlyForOneFiniteNonZeroDepth) {
+    const auto flat = [](float z0, float z1, float z2) {
+        const ScreenVertex s[3] = {{0, 0, z0, 1}, {2560, 0, z1, 1}, {0, 2560, z2, 1}};
+        const uint32_t idx[3] = {0, 1, 2};
+        RasterizerState rs;
+        rs.cullMode = CullMode::None;
+        TriangleSetup t;
+        EXPECT_EQ(setupTriangle(s, idx, 0, rs, PixelRect{0, 0, 63, 63}, t), SetupResult::Ok);
+        return t.flatDepth;
+    };
+    EXPECT_TRUE(flat(1, 1, 1));
+    EXPECT_TRUE(flat(0.3f, 0.3f, 0.3f));
+    EXPECT_FALSE(flat(0.3f, 0.3f, std::nextafter(0.3f, 1.0f)));
+    EXPECT_FALSE(flat(0.0f, 0.0f, 0.0f)) << "zero: the formula's sign of zero depends on the lane";
+    EXPECT_FALSE(flat(0.0f, -0.0f, 0.0f));
+    EXPECT_FALSE(flat(std::numeric_limits<float>::infinity(), std::numeric_limits<float>::infinity(),
+                      std::numeric_limits<float>::infinity()));
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    EXPECT_FALSE(flat(nan, nan, nan));
+}
+
 // ---- Deferred shading of opaque draws ---------------------------------------------------------------
 
 struct ColorIn {

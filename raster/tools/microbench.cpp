@@ -129,7 +129,8 @@ const PixelRect kTile{0, 0, kTileSize - 1, kTileSize - 1};
 
 TriangleSetup setupInTile(const glm::dvec2 (&p)[3]) {
     ScreenVertex s[3];
-    for (int k = 0; k < 3; ++k) s[k] = {snap(p[k].x), snap(p[k].y), 0.5f, 1.0f};
+    // Depth varies (0.4, 0.5, 0.6): a triangle of one depth would take interpolateDepth's shortcut.
+    for (int k = 0; k < 3; ++k) s[k] = {snap(p[k].x), snap(p[k].y), 0.4f + 0.1f * float(k), 1.0f};
     const uint32_t idx[3] = {0, 1, 2};
     TriangleSetup t;
     RASTER_CHECK(setupTriangle(s, idx, 0, noCull(), kTile, t) == SetupResult::Ok);

@@ -48,8 +48,20 @@ Barycentrics<Real> barycentrics(const TriangleInterpolant<Real>& ti, int64_t e0,
 // Depth is computed in double in both pipelines, from the exact edge functions, and rounded to
 // float once: the depth test then gives the same answer in the fast and the reference pipeline,
 // which matters where a billboard of constant depth cuts through a sloped surface.
+//
+// A triangle of one depth Z (TriangleSetup::flatDepth) gets Z, clamped, without the arithmetic.
+// Inside it that is the formula's own result: the three products have one sign and sum to
+// Z·area2·(1 + δ), |δ| < 2^-50, which rounds to the float Z. Outside (a block's helper lanes) the
+// formula could lose digits to cancellation; there Z is the exact value it approximates.
+inline float flatDepth(const TriangleSetup& t, float min_depth, float max_depth) {
+    float z = t.z[0];
+    z = z < min_depth ? min_depth : z;  // std::clamp's order: below lo → lo, then above hi → hi
+    return max_depth < z ? max_depth : z;
+}
+
 template <class Real>
 Real interpolateDepth(const TriangleSetup& t, int64_t e0, int64_t e1, int64_t e2, float min_depth, float max_depth) {
+    if (t.flatDepth) return Real(flatDepth(t, min_depth, max_depth));
     const double z = (double(e1) * t.z[0] + double(e2) * t.z[1] + double(e0) * t.z[2]) * t.invArea2;
     return Real(float(std::clamp(z, double(min_depth), double(max_depth))));
 }
@@ -73,6 +85,7 @@ inline simd::F64x4 edgesToDouble(const int64_t* e) {
 // a time, so the same bits.
 inline Float8 interpolateDepthWide(const TriangleSetup& t, const int64_t (&e)[3][8], float min_depth,
                                    float max_depth) {
+    if (t.flatDepth) return Float8(flatDepth(t, min_depth, max_depth));
     simd::F64x4 half[2];
     for (int h = 0; h < 2; ++h) {
         const simd::F64x4 e0 = edgesToDouble(&e[0][4 * h]), e1 = edgesToDouble(&e[1][4 * h]),

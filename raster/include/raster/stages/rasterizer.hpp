@@ -119,36 +119,48 @@ void rasterizeTriangleBlocks(const TriangleSetup& t, const EdgeSteps& s, const P
     for (int32_t y = by0; y <= y1; y += 2) {
         const uint32_t rows = (y >= y0 ? 0x0Fu : 0u) | (y + 1 <= y1 ? 0xF0u : 0u);
         int64_t e0[3] = {row[0], row[1], row[2]};
+        // Narrows [lo, hi] (block indices along the row) to the blocks whose chosen lane is ≥ 0
+        // for every edge, lane_offset(k) placing that lane relative to the block's lane 0: exact
+        // integer division where an edge crosses the row.
+        auto narrow = [&](auto&& lane_offset, int64_t& lo, int64_t& hi) {
+            for (int k = 0; k < 3 && lo <= hi; ++k) {
+                const int64_t step = 4 * s.dx[k];  // per block
+                const int64_t value = e0[k] + t.bias[k] + lane_offset(k);
+                if (step > 0) {
+                    if (value + lo * step < 0) lo = (-value + step - 1) / step;
+                } else if (step < 0) {
+                    if (value + hi * step < 0) hi = value < 0 ? -1 : value / -step;
+                } else if (value < 0) {
+                    hi = -1;
+                }
+            }
+        };
         // The blocks of this row pair that some lane of could be covered: for each edge, a block's
         // largest lane is its right column (edge rising with x) or left column (falling), in the
-        // row whose value is larger; blocks before the first or after the last whose largest lane
-        // is ≥ 0 have mask 0 and are skipped without evaluating them (exact integer division).
-        int64_t first = 0, last = (x1 - bx0) / 4;  // block indices along the row
-        for (int k = 0; k < 3 && first <= last; ++k) {
-            const int64_t step = 4 * s.dx[k];  // per block
-            const int64_t largest = e0[k] + t.bias[k] + std::max<int64_t>(0, s.dy[k]) + (s.dx[k] > 0 ? 3 * s.dx[k] : 0);
-            if (step > 0) {
-                if (largest + first * step < 0) first = (-largest + step - 1) / step;
-            } else if (step < 0) {
-                if (largest + last * step < 0) last = largest < 0 ? -1 : largest / -step;
-            } else if (largest < 0) {
-                last = -1;
-            }
-        }
+        // row whose value is larger; the blocks outside have mask 0 and are not evaluated.
+        int64_t first = 0, last = (x1 - bx0) / 4;
+        narrow([&](int k) { return std::max<int64_t>(0, s.dy[k]) + (s.dx[k] > 0 ? 3 * s.dx[k] : 0); }, first, last);
         if (first > last) {
             for (int k = 0; k < 3; ++k) row[k] += 2 * s.dy[k];
             continue;
         }
+        // Likewise the blocks whose smallest lane is ≥ 0 for every edge: all eight lanes inside,
+        // so their mask needs no compares (big triangles: the sky, the ground).
+        int64_t full_first = first, full_last = last;
+        narrow([&](int k) { return std::min<int64_t>(0, s.dy[k]) + (s.dx[k] < 0 ? 3 * s.dx[k] : 0); }, full_first,
+               full_last);
+        const int32_t x_full0 = bx0 + int32_t(4 * full_first), x_full1 = bx0 + int32_t(4 * full_last);
         for (int k = 0; k < 3; ++k) e0[k] += first * 4 * s.dx[k];
         const int32_t x_end = bx0 + int32_t(4 * last);
         for (int32_t x = bx0 + int32_t(4 * first); x <= x_end; x += 4) {
             uint32_t mask = rows & blockColumns(x, x0, x1);
+            const bool inside = x >= x_full0 && x <= x_full1;
             alignas(32) int64_t e[3][8];
             for (int k = 0; k < 3; ++k) {
                 const simd::I64x4 top = e0[k] + top_offset[k], bottom = e0[k] + bottom_offset[k];
                 std::memcpy(&e[k][0], &top, sizeof top);
                 std::memcpy(&e[k][4], &bottom, sizeof bottom);
-                mask &= detail::nonNegativeBits(top + bias[k], bottom + bias[k]);
+                if (!inside) mask &= detail::nonNegativeBits(top + bias[k], bottom + bias[k]);
             }
             if (mask) visit(x, y, mask, e);
             for (int k = 0; k < 3; ++k) e0[k] += 4 * s.dx[k];

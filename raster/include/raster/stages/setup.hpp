@@ -13,6 +13,7 @@
 #pragma once
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 
@@ -75,6 +76,9 @@ struct TriangleSetup {
     double invArea2;     // 1 / area2, for depth (see interpolateDepth)
     int64_t bias[3];
     float z[3], invW[3];
+    // z[0], z[1] and z[2] are one finite, non-zero float (same bits): depth is z[0] everywhere
+    // (interpolateDepth). The sky at the far plane, a billboard drawn as two triangles.
+    bool flatDepth;
     uint32_t vertex[3];  // indices of the clip-space vertices in the chunk's vertex pool
     uint32_t primitiveId;
     PixelRect box;       // candidate pixels, already inside the clip rectangle
@@ -101,6 +105,9 @@ inline SetupResult setupTriangle(const ScreenVertex (&s)[3], const uint32_t (&ve
     }
     t.area2 = clockwise ? area2 : -area2;
     t.invArea2 = 1.0 / double(t.area2);
+    t.flatDepth = std::bit_cast<uint32_t>(t.z[0]) == std::bit_cast<uint32_t>(t.z[1]) &&
+                  std::bit_cast<uint32_t>(t.z[0]) == std::bit_cast<uint32_t>(t.z[2]) && std::isfinite(t.z[0]) &&
+                  t.z[0] != 0.0f;
     for (int k = 0; k < 3; ++k) {
         const int k1 = (k + 1) % 3;
         t.bias[k] = isTopLeft(t.x[k1] - t.x[k], t.y[k1] - t.y[k]) ? 0 : -1;
