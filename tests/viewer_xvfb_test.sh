@@ -4,7 +4,8 @@
 # takes screenshots of the frame, the current primitive's wireframe, the overdraw view, and the
 # reference pipeline's image and difference (--solution reference, K and J), then runs
 # the same script headless; the screenshots and everything printed about the clicks must be the
-# same, byte for byte. Exit 77 (CTest: skipped) only when xvfb-run is missing.
+# same, byte for byte. Then a lab (billboards): K and J compare it with its solution, unasked, in the
+# window as headless. Exit 77 (CTest: skipped) only when xvfb-run is missing.
 #   bash tests/viewer_xvfb_test.sh build/bin/raster
 set -euo pipefail
 raster=$1
@@ -48,4 +49,22 @@ cmp -s "$dir/window/particles-0001.png" "$dir/window/particles-0002.png" &&
 # The window itself was read back: a PNG of the window's size (IHDR: width, height at bytes 16..23).
 size=$(od -An -tx1 -j16 -N8 "$dir/window/particles-0001-window.png" | tr -d ' \n')
 [[ $size == 00000140000000b4 ]] || fail "window capture is not 320x180 (IHDR $size)"
+
+# A lab: its solution (billboards@solution) is what K shows and J compares with, without --solution.
+lab_script="J S K S Esc"
+SDL_VIDEODRIVER=x11 timeout 50 xvfb-run -a -s "-screen 0 640x480x24" \
+  "$raster" view billboards --size 320x180 --script "$lab_script" --screenshot-dir "$dir/lab-window" >"$dir/lab-window.txt"
+env -u SDL_VIDEODRIVER timeout 50 "$raster" view billboards --headless --size 320x180 --script "$lab_script" \
+  --screenshot-dir "$dir/lab-headless" >"$dir/lab-headless.txt"
+cat "$dir/lab-window.txt"
+grep -q "video driver x11" "$dir/lab-window.txt" || fail "the lab's window run did not use SDL's x11 driver"
+grep -q '^difference from scene billboards@solution: [0-9]* of 57600 pixels differ' "$dir/lab-window.txt" ||
+  fail "J on a lab printed no difference from its solution"
+diff <(printed "$dir/lab-window.txt") <(printed "$dir/lab-headless.txt") || fail "the lab's reports differ"
+for shot in billboards-000{1,2}.png; do
+  [[ -s $dir/lab-window/$shot ]] || fail "the lab's window run wrote no $shot"
+  cmp "$dir/lab-window/$shot" "$dir/lab-headless/$shot" || fail "lab $shot differs between the window and headless"
+done
+cmp -s "$dir/lab-window/billboards-0001.png" "$dir/lab-window/billboards-0002.png" &&
+  fail "the lab's difference and its solution's image should differ"
 echo "viewer under Xvfb: OK"
