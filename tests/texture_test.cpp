@@ -8,10 +8,13 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "raster/check.hpp"
+#include "raster/format.hpp"
 #include "raster/sampler.hpp"
 #include "raster/shader_context.hpp"
 
@@ -239,6 +242,94 @@ TEST(TextureSample, LinearAtTexelCentreReturnsTheTexelExactly) {
                 EXPECT_EQ(t.Sample(SamplerState::bilinear(mode), uv), expected) << i << "," << j;
                 EXPECT_EQ(t.load(i, j), expected);
             }
+}
+
+// ---- The fixed-point filter of one-level RGBA8 textures under Clamp (texture.hpp, "Precision") ------
+
+// The float formula's texel indices for coordinate x on an axis of n texels, clamped.
+std::pair<int, int> clampedPair(float x, int n) {
+    const int i = int(std::floor(std::clamp(x * float(n) - 0.5f, -16777216.0f, 16777216.0f)));
+    return {std::clamp(i, 0, n - 1), std::clamp(i + 1, 0, n - 1)};
+}
+
+TEST(TextureFootprint, WithinItsDocumentedBoundOfTheExactFilter) {
+    // Random bytes, so that neighbours differ by up to 255: the bound is tested where it is widest.
+    constexpr int kW = 16, kH = 8;
+    std::mt19937 rng(11);
+    std::vector<uint8_t> bytes(kW * kH * 4);
+    for (auto& b : bytes) b = uint8_t(rng());
+    const Texture2D t = Texture2D::fromRgba8(kW, kH, bytes);
+    const SamplerState s = SamplerState::bilinear(AddressMode::Clamp);
+    std::uniform_real_distribution<float> d(-0.2f, 1.2f);
+    double worst_ratio = 0, worst = 0;
+    for (int k = 0; k < 20000; ++k) {
+        const glm::vec2 uv{d(rng), d(rng)};
+        const glm::vec4 fixed = t.Sample(s, uv);
+        glm::vec4 exact;
+        {
+            ReferenceModeScope scope;
+            exact = t.Sample(s, uv);
+        }
+        const auto [x0, x1] = clampedPair(uv.x, kW);
+        const auto [y0, y1] = clampedPair(uv.y, kH);
+        for (int c = 0; c < 4; ++c) {
+            const auto at = [&](int x, int y) { return int(bytes[size_t(4 * (y * kW + x) + c)]); };
+            const int du = std::max(std::abs(at(x1, y0) - at(x0, y0)), std::abs(at(x1, y1) - at(x0, y1)));
+            const int dv = std::max({std::abs(at(x0, y1) - at(x0, y0)), std::abs(at(x1, y1) - at(x1, y0))});
+            const double bound = (du / 256.0 + dv / 32768.0) / 255.0 + std::ldexp(1.0, -22);
+            const double error = std::abs(double(fixed[c]) - double(exact[c]));
+            ASSERT_LE(error, bound) << "uv " << uv.x << "," << uv.y << " channel " << c;
+            worst = std::max(worst, error);
+            worst_ratio = std::max(worst_ratio, error / bound);
+        }
+    }
+    // Not a looser filter than documented either: α really is rounded to 1/256, so the error
+    // reaches well over a third of an 8-bit step somewhere.
+    EXPECT_GT(worst * 255, 0.35);
+    EXPECT_GT(worst_ratio, 0.5);
+}
+
+TEST(TextureFootprint, WeightsAreStepsOf1Over256AndTheSumIsExact) {
+    // Along u at the row centre (β = 0): a = α·256 exactly for u = (i + 0.5 + k/256)/W, and the
+    // result is ((256 − k)·t0 + k·t1)/256 bytes, rounded once to float.
+    const std::vector<uint8_t> bytes = {0, 10, 200, 255, 255, 30, 0, 1};  // 2×1: texel 0, texel 1
+    const Texture2D t = Texture2D::fromRgba8(2, 1, bytes);
+    const SamplerState s = SamplerState::bilinear(AddressMode::Clamp);
+    for (int k = 0; k < 256; ++k) {
+        const glm::vec2 uv{(0.5f + float(k) / 256.0f) / 2.0f, 0.5f};
+        const glm::vec4 c = t.Sample(s, uv);
+        for (int ch = 0; ch < 4; ++ch) {
+            const double expected = ((256 - k) * bytes[size_t(ch)] + k * bytes[size_t(4 + ch)]) / 256.0 / 255.0;
+            EXPECT_NEAR(c[ch], expected, 1e-7) << k << " " << ch;
+        }
+    }
+    // α above 255.5/256 rounds to 255/256, not to the right texel.
+    const glm::vec4 near_one = t.Sample(s, {(0.5f + 0.999f) / 2.0f, 0.5f});
+    EXPECT_NEAR(near_one.x, 255.0 * 255 / 256 / 255, 1e-7);
+    // Outside the texture both texels of a pair clamp to the edge one: exact.
+    EXPECT_EQ(t.Sample(s, {-3.0f, 0.5f}), t.load(0, 0));
+    EXPECT_EQ(t.Sample(s, {7.0f, -2.0f}), t.load(1, 0));
+}
+
+TEST(TextureFootprint, OnlyOneLevelRgba8ClampLinearIsFixedPoint) {
+    // The same bytes as floats, with mips, or under Wrap keep the float formula, bit for bit.
+    std::mt19937 rng(5);
+    std::vector<uint8_t> bytes(8 * 4 * 4);
+    for (auto& b : bytes) b = uint8_t(rng());
+    std::vector<float> floats(bytes.size());
+    for (size_t k = 0; k < bytes.size(); ++k) floats[k] = unorm8ToFloat(bytes[k]);
+    const Texture2D unorm = Texture2D::fromRgba8(8, 4, bytes), real = Texture2D::fromRgba32f(8, 4, floats);
+    const Texture2D mipped = Texture2D::fromRgba8(8, 4, bytes, true);
+    const SamplerState clamp = SamplerState::bilinear(AddressMode::Clamp);
+    const SamplerState wrap = SamplerState::bilinear(AddressMode::Wrap);
+    int differ = 0;
+    for (int k = 0; k < 200; ++k) {
+        const glm::vec2 uv{0.013f + 0.0049f * k, 0.97f - 0.0047f * k};
+        differ += unorm.Sample(clamp, uv) != real.Sample(clamp, uv);
+        EXPECT_EQ(unorm.Sample(wrap, uv), real.Sample(wrap, uv)) << k;
+        EXPECT_EQ(mipped.SampleLevel(clamp, uv, 0), real.Sample(clamp, uv)) << k;
+    }
+    EXPECT_GT(differ, 100) << "the one-level RGBA8 clamp case should take the fixed-point filter";
 }
 
 TEST(TextureSample, NanAndHugeCoordinatesStayInBounds) {

@@ -284,7 +284,8 @@ void Texture2D::buildFootprints() {
     auto texelBytes = [&](int x, int y, uint8_t* out) {
         x = std::clamp(x, 0, w - 1);
         y = std::clamp(y, 0, h - 1);
-        std::memcpy(out, &bytes_[4 * (size_t(y) * size_t(w) + size_t(x))], 4);
+        // Stored as texel − 128 in two's complement (filterFootprint reads signed bytes).
+        for (size_t c = 0; c < 4; ++c) out[c] = bytes_[4 * (size_t(y) * size_t(w) + size_t(x)) + c] ^ 0x80u;
     };
     for (int j = -1; j < h; ++j) {
         for (int i = -1; i < w; ++i) {

@@ -613,7 +613,9 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                             depth_here.writeWide(x, y, z8, live);
                             const uint32_t noop = color_here.noOpWide(c) & live;
                             no_ops += uint64_t(std::popcount(noop));
-                            if (live & ~noop) color_here.writeWide(x, y, c, live & ~noop);
+                            // No-op lanes may be written too (they add zero), so that a block
+                            // wholly inside the rectangle is stored without a lane select.
+                            if (live & ~noop) color_here.writeWide(x, y, c, live);
                             continue;
                           }
                         }

@@ -37,8 +37,19 @@
 // Precision. Normally all filter arithmetic (coordinates, weights, blends, λ) is float. While
 // inReferenceMode() (shader_context.hpp) it is double, from texels read exactly (n/255 in double for
 // UNORM), and the result is rounded to float once at the end.
+// One exception, the particles' case: linear filtering of a one-level R8G8B8A8_UNORM texture of at
+// most kMaxFootprintSide texels a side under Clamp on both axes runs in fixed point, scalar and eight
+// wide alike (outside reference mode). α is rounded to 8 fraction bits (D3D11's subtexel precision,
+// D3D11_SUBTEXEL_FRACTIONAL_BIT_COUNT; at most 255/256) and β to 14; the weights then sum to exactly
+// 2^22 and the sum of weighted bytes is exact in 32 bits. The result differs from the float formula
+// above by at most (Δu/256 + Δv/32768)/255 + 2^−22, where Δu and Δv are the largest differences
+// between the bytes being blended horizontally and vertically (one 8-bit step for a black-white
+// checkerboard, about a thirtieth of one for the fire texture, whose neighbours differ by at most 8);
+// at texel centres it is still the texel exactly.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -137,9 +148,9 @@ class Texture2D {
     // pixel loop would then keep them in memory and reload them after every store to a target.
     glm::vec<4, Float8> sampleLanes(SamplerState sampler, glm::vec<2, Float8> uv) const;
 
-    // Bilinear footprints for the eight-wide clamp path: for every texel coordinate pair (i, j) in
+    // Bilinear footprints for the fixed-point clamp path: for every texel coordinate pair (i, j) in
     // [−1, w−1] × [−1, h−1], the four clamped texels (i, j) (i+1, j) (i, j+1) (i+1, j+1) as 16 bytes,
-    // so that one load fetches what a bilinear tap needs. Built for one-level RGBA8 textures up to
+    // each byte − 128, so that one load fetches what a bilinear tap needs. Built for one-level RGBA8 textures up to
     // kMaxFootprintSide on a side ((w+1)(h+1)·16 bytes, 4 MB at most).
     static constexpr int kMaxFootprintSide = 512;
     void buildFootprints();
@@ -155,6 +166,8 @@ class Texture2D {
     };
     FootprintGrid grid_;
     glm::vec<4, Float8> sampleFootprints(const glm::vec<2, Float8>& uv) const;
+    // The same fixed-point filter for one pixel: footprint (i, j) (clamped here), weights α, β.
+    glm::vec4 filterFootprint(int i, int j, float alpha, float beta) const;
 
     std::vector<Level> levels_;
     std::vector<glm::vec4> texels_;  // every level, as the shader reads it (UNORM already n/255)
@@ -295,6 +308,11 @@ template <class T>
     const T b = detail::clampTexelCoord(v * h - T(0.5));
     const int i = detail::floorToInt(a), j = detail::floorToInt(b);
     const T alpha = a - T(i), beta = b - T(j);
+    if constexpr (std::is_same_v<T, float>) {
+        // Footprints exist only for one-level textures, so `level` is level 0.
+        if (grid_.stride != 0 && sampler.addressU == AddressMode::Clamp && sampler.addressV == AddressMode::Clamp)
+            return filterFootprint(i, j, alpha, beta);
+    }
     int x0, x1, y0, y1;
     detail::addressTexelPair(sampler.addressU, i, level.width, x0, x1);
     detail::addressTexelPair(sampler.addressV, j, level.height, y0, y1);
@@ -319,6 +337,38 @@ inline glm::vec4 Texture2D::Sample(const SamplerState& sampler, glm::vec2 uv) co
     if (levels_.size() == 1 && sampler.minFilter == sampler.magFilter && !inReferenceMode())
         return filterLevel<float>(sampler, sampler.magFilter, levels_[0], uv.x, uv.y);
     return sampleImplicitLod(sampler, uv);
+}
+
+namespace detail {
+
+// The fixed-point bilinear filter of footprints (the header's "Precision"). Footprint bytes are
+// stored as texel − 128, read as signed bytes. Horizontal weights (256 − a, a), a = min(round(α·256),
+// 255); vertical (2^14 − b, b), b = round(β·2^14) (round half to even, as CVTPS2DQ). Per channel
+//     sum = (2^14 − b)·((256 − a)·t00 + a·t10) + b·((256 − a)·t01 + a·t11),  t = byte − 128,
+// exact in 32 bits (|sum| ≤ 2^29), 2^22 units per byte; the result is (sum + 128·2^22) · 2^−22/255,
+// so that at α = β = 0 it is unorm8ToFloat(t00) bit for bit (the scalings by 2^k are exact).
+inline constexpr float kFootprintAlphaScale = 256.0f;
+inline constexpr int kFootprintAlphaMax = 255;
+inline constexpr float kFootprintBetaScale = 16384.0f;
+inline constexpr int kFootprintBetaOne = 16384;
+inline constexpr float kFootprintBiasSum = 536870912.0f;                // 128 · 2^22
+inline constexpr float kFootprintScale = (1.0f / 255.0f) / 4194304.0f;  // unorm8ToFloat's 1/255 · 2^−22
+
+}  // namespace detail
+
+inline glm::vec4 Texture2D::filterFootprint(int i, int j, float alpha, float beta) const {
+    const int ii = std::clamp(i, -1, grid_.maxI) + 1, jj = std::clamp(j, -1, grid_.maxJ) + 1;
+    const int8_t* f = reinterpret_cast<const int8_t*>(footprints_.data()) +
+                      16 * (size_t(jj) * size_t(grid_.stride) + size_t(ii));
+    const int a = std::min(int(std::lrint(alpha * detail::kFootprintAlphaScale)), detail::kFootprintAlphaMax);
+    const int b = int(std::lrint(beta * detail::kFootprintBetaScale));
+    glm::vec4 out;
+    for (int c = 0; c < 4; ++c) {
+        const int top = (256 - a) * f[c] + a * f[4 + c], bottom = (256 - a) * f[8 + c] + a * f[12 + c];
+        const int sum = (detail::kFootprintBetaOne - b) * top + b * bottom;
+        out[c] = (float(sum) + detail::kFootprintBiasSum) * detail::kFootprintScale;
+    }
+    return out;
 }
 
 namespace detail {
@@ -358,7 +408,8 @@ struct Bilinear8 {
 
 #if defined(__AVX2__)
 [[gnu::always_inline]] inline glm::vec<4, Float8> Texture2D::sampleFootprints(const glm::vec<2, Float8>& uv) const {
-    // filterLevel's linear filter with clamped addressing, lane by lane the same operations.
+    // filterLevel's linear filter with clamped addressing, i.e. filterFootprint, lane by lane the
+    // same operations.
     const auto [i, j, alpha, beta] = detail::bilinear8(uv, Float8(grid_.width), Float8(grid_.height));
     // One 16-byte load per lane, then a transpose into one register per channel holding, per
     // lane, the channel's bytes of the four texels (00, 10, 01, 11).
@@ -379,29 +430,40 @@ struct Bilinear8 {
     const __m256i t2 = _mm256_unpacklo_epi32(y2, y3), t3 = _mm256_unpackhi_epi32(y2, y3);
     const Int8 channel[4] = {simd::I32x8(_mm256_unpacklo_epi64(t0, t2)), simd::I32x8(_mm256_unpackhi_epi64(t0, t2)),
                              simd::I32x8(_mm256_unpacklo_epi64(t1, t3)), simd::I32x8(_mm256_unpackhi_epi64(t1, t3))};
-    const Float8 k(1.0f / 255.0f);
-    auto texel = [&](int t) {  // t: 0 = (i, j), 1 = (i+1, j), 2 = (i, j+1), 3 = (i+1, j+1)
-        // Byte t of each 32-bit lane, zero-extended: one shuffle instead of a shift and a mask.
-        const int8_t z = -128, b = int8_t(t);
-        const __m256i pick = _mm256_setr_epi8(b, z, z, z, b + 4, z, z, z, b + 8, z, z, z, b + 12, z, z, z, b, z,
-                                              z, z, b + 4, z, z, z, b + 8, z, z, z, b + 12, z, z, z);
-        auto byte = [&](int c) { return Int8(simd::I32x8(_mm256_shuffle_epi8(__m256i(channel[c].v), pick))); };
-        return glm::vec<4, Float8>(toFloat(byte(0)) * k, toFloat(byte(1)) * k, toFloat(byte(2)) * k,
-                                   toFloat(byte(3)) * k);
+    // filterFootprint's arithmetic, eight lanes at once. Weights per lane: the bytes (255 − a, a)
+    // twice, for PMADDUBSW's pairs (t00, t10) and (t01, t11), whose missing 1·t0 (256 − a does not fit
+    // a byte) is added from the pair's low byte; then the words (2^14 − b, b) for PMADDWD's rows.
+    const __m256i a = _mm256_min_epi32(_mm256_cvtps_epi32(__m256((alpha * Float8(detail::kFootprintAlphaScale)).v)),
+                                       _mm256_set1_epi32(detail::kFootprintAlphaMax));
+    const __m256i wa16 = _mm256_or_si256(_mm256_slli_epi32(a, 8), _mm256_xor_si256(a, _mm256_set1_epi32(255)));
+    const __m256i wa = _mm256_or_si256(wa16, _mm256_slli_epi32(wa16, 16));
+    const __m256i b = _mm256_cvtps_epi32(__m256((beta * Float8(detail::kFootprintBetaScale)).v));
+    const __m256i wb = _mm256_or_si256(_mm256_slli_epi32(b, 16),
+                                       _mm256_sub_epi32(_mm256_set1_epi32(detail::kFootprintBetaOne), b));
+    auto filter = [&](int c) {
+        const __m256i bytes = __m256i(channel[c].v);
+        const __m256i low = _mm256_srai_epi16(_mm256_slli_epi16(bytes, 8), 8);  // t00, t01 as words
+        const __m256i rows = _mm256_add_epi16(_mm256_maddubs_epi16(wa, bytes), low);
+        const __m256 sum = _mm256_cvtepi32_ps(_mm256_madd_epi16(rows, wb));
+        return Float8(simd::F32x8(_mm256_mul_ps(_mm256_add_ps(sum, _mm256_set1_ps(detail::kFootprintBiasSum)),
+                                                _mm256_set1_ps(detail::kFootprintScale))));
     };
-    return detail::lerp8(detail::lerp8(texel(0), texel(1), alpha), detail::lerp8(texel(2), texel(3), alpha), beta);
+    return {filter(0), filter(1), filter(2), filter(3)};
 }
 #endif
 
 template <class UV>
     requires std::same_as<UV, glm::vec<2, Float8>>
 [[gnu::always_inline]] inline glm::vec<4, Float8> Texture2D::Sample(const SamplerState& sampler, const UV& uv) const {
-#if defined(__AVX2__)
     // The lecture's case first, with as few loads as the tests allow (see FootprintGrid).
     if (grid_.stride != 0 && sampler.minFilter == Filter::Linear && sampler.magFilter == Filter::Linear &&
-        sampler.addressU == AddressMode::Clamp && sampler.addressV == AddressMode::Clamp && !inReferenceMode())
+        sampler.addressU == AddressMode::Clamp && sampler.addressV == AddressMode::Clamp && !inReferenceMode()) {
+#if defined(__AVX2__)
         return sampleFootprints(uv);
+#else
+        return sampleLanes(sampler, uv);  // filterFootprint lane by lane
 #endif
+    }
     // The common case in registers: one level, one filter, clamped UNORM8 texels. Everything
     // else goes lane by lane through the scalar code.
     if (levels_.size() != 1 || sampler.minFilter != sampler.magFilter || bytes_.empty() ||

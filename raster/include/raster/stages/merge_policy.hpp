@@ -167,7 +167,7 @@ struct ColorFast {
             const __m256i to_pixels = _mm256_setr_epi8(0, 4, 8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15, 0, 4, 8,
                                                        12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15);
             const Int8 sum = simd::I32x8(_mm256_adds_epu8(__m256i(old.v), _mm256_shuffle_epi8(planar, to_pixels)));
-            const Int8 out = select(Mask8::fromBits(mask), sum, old);
+            const Int8 out = mask == 0xFFu ? sum : select(Mask8::fromBits(mask), sum, old);
             std::memcpy(row0, &out.v, 16);
             std::memcpy(row1, reinterpret_cast<const char*>(&out.v) + 16, 16);
             return;
