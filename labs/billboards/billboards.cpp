@@ -87,8 +87,6 @@ DepthStencilState fireDepth() {
 class BillboardsLab final : public LabScene {
   public:
     explicit BillboardsLab(const SceneOptions& o) : data_(o) {
-        vs_occluder_.viewProj = data_.viewProj;
-        ps_occluder_.color = data_.occluderColor;
         gs_.viewProj = data_.viewProj;
         gs_.billboardSize = data_.billboardSize;
         ps_fire_.billboardTexture = &data_.texture;
@@ -96,13 +94,7 @@ class BillboardsLab final : public LabScene {
 
     void render(Context& context, RenderTarget& color, DepthTarget& depth) override {
         beginSceneFrame(context, color, depth);  // clear, bind, viewport, no culling
-        context.setInputLayout(&data_.layout);
-        // Draw 1: the occluder, opaque, depth test and write.
-        context.setDepthStencilState({true, true, ComparisonFunc::Less});
-        context.setBlendState(BlendState::opaque());
-        context.setVertexBuffer(0, &data_.occluder);
-        context.setPrimitiveTopology(Topology::TriangleList);
-        context.draw(vs_occluder_, ps_occluder_, 6);
+        data_.drawOccluder(context);  // draw 1: the occluder, opaque, depth test and write
         // Draw 2: the particles, one point each; the geometry shader makes each a sprite.
         context.setDepthStencilState(fireDepth());
         context.setBlendState(fireBlend());
@@ -113,8 +105,6 @@ class BillboardsLab final : public LabScene {
 
   private:
     ParticleSceneData data_;
-    shaders::VsTransform vs_occluder_;
-    shaders::PsConstant ps_occluder_;
     GsBillboard gs_;
     PsFire ps_fire_;
 };

@@ -79,13 +79,24 @@ ParticleSceneData::ParticleSceneData(const SceneOptions& o)
     layout = InputLayout(desc);
 }
 
+void ParticleSceneData::drawOccluder(Context& context) const {
+    shaders::VsTransform vs;
+    vs.viewProj = viewProj;
+    shaders::PsConstant ps;
+    ps.color = occluderColor;
+    context.setInputLayout(&layout);
+    context.setDepthStencilState({true, true, ComparisonFunc::Less});
+    context.setBlendState(BlendState::opaque());
+    context.setVertexBuffer(0, &occluder);
+    context.setPrimitiveTopology(Topology::TriangleList);
+    context.draw(vs, ps, 6);
+}
+
 namespace {
 
 class ParticlesScene final : public Scene {
 public:
     explicit ParticlesScene(const SceneOptions& o) : data_(o) {
-        vs_occluder_.viewProj = data_.viewProj;
-        ps_occluder_.color = data_.occluderColor;
         gs_.viewProj = data_.viewProj;
         gs_.billboardSize = data_.billboardSize;
         ps_fire_.billboardTexture = &data_.texture;
@@ -94,13 +105,7 @@ public:
 
     void render(Context& context, RenderTarget& color, DepthTarget& depth) override {
         beginSceneFrame(context, color, depth);
-        context.setInputLayout(&data_.layout);
-        // Draw 1: the occluder ("giraffe"), opaque, depth test and write.
-        context.setDepthStencilState({true, true, ComparisonFunc::Less});
-        context.setBlendState(BlendState::opaque());
-        context.setVertexBuffer(0, &data_.occluder);
-        context.setPrimitiveTopology(Topology::TriangleList);
-        context.draw(vs_occluder_, ps_occluder_, 6);
+        data_.drawOccluder(context);  // draw 1, the "giraffe"
         // Draw 2: the particles, additive, depth test on, depth write off.
         context.setDepthStencilState(DepthStencilState::readOnly(ComparisonFunc::Less));
         context.setBlendState(BlendState::additive());
@@ -111,8 +116,6 @@ public:
 
 private:
     ParticleSceneData data_;
-    shaders::VsTransform vs_occluder_;
-    shaders::PsConstant ps_occluder_;
     shaders::GsBillboard gs_;
     shaders::PsFire ps_fire_;
 };

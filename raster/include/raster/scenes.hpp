@@ -81,6 +81,9 @@ void beginSceneFrame(Context& context, RenderTarget& color, DepthTarget& depth);
 // occluder (two triangles) and `count` particles, both POSITION R32G32B32_FLOAT in `layout`.
 struct ParticleSceneData {
     explicit ParticleSceneData(const SceneOptions& options);
+    // Draw 1 of SCENES.md: the occluder, opaque (depth test Less and write, no blending), with
+    // this input layout bound; it leaves those states set.
+    void drawOccluder(Context& context) const;
     glm::mat4 viewProj;       // P·V for the options' camera (SCENES.md's when unset)
     glm::vec2 billboardSize;  // h·P[0][0], h·P[1][1] for the sprites' world half-size h = 0.08
     glm::vec4 occluderColor;  // (89, 140, 64, 255) / 255

@@ -455,9 +455,12 @@ struct Bilinear8 {
 template <class UV>
     requires std::same_as<UV, glm::vec<2, Float8>>
 [[gnu::always_inline]] inline glm::vec<4, Float8> Texture2D::Sample(const SamplerState& sampler, const UV& uv) const {
-    // The lecture's case first, with as few loads as the tests allow (see FootprintGrid).
-    if (grid_.stride != 0 && sampler.minFilter == Filter::Linear && sampler.magFilter == Filter::Linear &&
-        sampler.addressU == AddressMode::Clamp && sampler.addressV == AddressMode::Clamp && !inReferenceMode()) {
+    // The lecture's case first, with as few loads as the tests allow (see FootprintGrid). `&`, not
+    // `&&`: GCC merges the four byte tests of `&&` into one 32-bit load of the sampler, which the
+    // pixel loop has just rebuilt on the stack byte by byte, and that load cannot be forwarded.
+    const bool bilinear_clamp = (sampler.minFilter == Filter::Linear) & (sampler.magFilter == Filter::Linear) &
+                                (sampler.addressU == AddressMode::Clamp) & (sampler.addressV == AddressMode::Clamp);
+    if (grid_.stride != 0 && bilinear_clamp && !inReferenceMode()) {
 #if defined(__AVX2__)
         return sampleFootprints(uv);
 #else

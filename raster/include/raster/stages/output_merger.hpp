@@ -243,15 +243,19 @@ void mergeFragment(RenderTarget& rt, uint32_t x, uint32_t y, const RenderTargetB
                 const glm::vec4 s1 = detail::saturate(src1), f = detail::saturate(factor);
                 const glm::vec4 dst(unorm8ToFloat(pixel[0]), unorm8ToFloat(pixel[1]), unorm8ToFloat(pixel[2]),
                                     unorm8ToFloat(pixel[3]));
-                const glm::vec4 result = blendColor(d, s, s1, dst, f);
-                for (int c = 0; c < 4; ++c) out[c] = floatToUnorm8(result[c]);
                 // Add with destination factor One keeps the destination byte n exact, as the reference
                 // does: the source term alone is rounded, in units of 1/255, and n added after.
-                if (d.blendOp == BlendOp::Add && d.destBlend == Blend::One) {
+                const bool add_one = d.blendOp == BlendOp::Add && d.destBlend == Blend::One;
+                const bool add_one_alpha = d.blendOpAlpha == BlendOp::Add && d.destBlendAlpha == Blend::One;
+                if (!add_one || !add_one_alpha) {
+                    const glm::vec4 result = blendColor(d, s, s1, dst, f);
+                    for (int c = 0; c < 4; ++c) out[c] = floatToUnorm8(result[c]);
+                }
+                if (add_one) {
                     const glm::vec4 sf = detail::blendFactor(d.srcBlend, s, s1, dst, f, 1.0f);
                     for (int c = 0; c < 3; ++c) out[c] = detail::addUnits255(pixel[c], s[c], sf[c]);
                 }
-                if (d.blendOpAlpha == BlendOp::Add && d.destBlendAlpha == Blend::One)
+                if (add_one_alpha)
                     out[3] = detail::addUnits255(pixel[3], s.w, detail::blendFactor(d.srcBlendAlpha, s, s1, dst, f, 1.0f).w);
             }
         }
