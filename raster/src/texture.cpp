@@ -280,20 +280,22 @@ void Texture2D::buildFootprints() {
         return;
     const int w = level.width, h = level.height;
     footprints_.resize(size_t(w + 1) * size_t(h + 1) * 16);
-    grid_ = {float(w), float(h), w - 1, h - 1, w + 1};
-    auto texelBytes = [&](int x, int y, uint8_t* out) {
+    grid_ = {float(w), float(h), float(w - 1), float(h - 1), float(w + 1), float(w + 2), w - 1, h - 1, w + 1};
+    // Channel-major, so that a load is already what the filter multiplies: bytes 4c..4c+3 are channel
+    // c of texels (i, j) (i+1, j) (i, j+1) (i+1, j+1), clamped, each stored as texel − 128 in two's
+    // complement (the filters read signed bytes).
+    auto put = [&](int x, int y, uint8_t* f, size_t k) {
         x = std::clamp(x, 0, w - 1);
         y = std::clamp(y, 0, h - 1);
-        // Stored as texel − 128 in two's complement (filterFootprint reads signed bytes).
-        for (size_t c = 0; c < 4; ++c) out[c] = bytes_[4 * (size_t(y) * size_t(w) + size_t(x)) + c] ^ 0x80u;
+        for (size_t c = 0; c < 4; ++c) f[4 * c + k] = bytes_[4 * (size_t(y) * size_t(w) + size_t(x)) + c] ^ 0x80u;
     };
     for (int j = -1; j < h; ++j) {
         for (int i = -1; i < w; ++i) {
             uint8_t* f = &footprints_[16 * (size_t(j + 1) * size_t(w + 1) + size_t(i + 1))];
-            texelBytes(i, j, f);
-            texelBytes(i + 1, j, f + 4);
-            texelBytes(i, j + 1, f + 8);
-            texelBytes(i + 1, j + 1, f + 12);
+            put(i, j, f, 0);
+            put(i + 1, j, f, 1);
+            put(i, j + 1, f, 2);
+            put(i + 1, j + 1, f, 3);
         }
     }
 }

@@ -153,8 +153,9 @@ class Texture2D {
 
     // Bilinear footprints for the fixed-point clamp path: for every texel coordinate pair (i, j) in
     // [−1, w−1] × [−1, h−1], the four clamped texels (i, j) (i+1, j) (i, j+1) (i+1, j+1) as 16 bytes,
-    // each byte − 128, so that one load fetches what a bilinear tap needs. Built for one-level RGBA8 textures up to
-    // kMaxFootprintSide on a side ((w+1)(h+1)·16 bytes, 4 MB at most).
+    // channel-major (bytes 4c..4c+3 hold channel c of the four), each byte − 128, so that one load
+    // fetches what a bilinear tap needs in the order the filter multiplies it. Built for one-level
+    // RGBA8 textures up to kMaxFootprintSide on a side ((w+1)(h+1)·16 bytes, 4 MB at most).
     static constexpr int kMaxFootprintSide = 512;
     void buildFootprints();
     std::vector<uint8_t> footprints_;
@@ -163,8 +164,11 @@ class Texture2D {
     // call reloads it (hence no level list to walk and no int-to-float conversions).
     struct FootprintGrid {
         float width = 0, height = 0;   // of level 0, as floats
+        float lastI = 0, lastJ = 0;    // width − 1, height − 1
+        float rowStride = 0;           // width + 1 footprints per row
+        float originIndex = 0;         // width + 2: the index of footprint (0, 0), as (−1, −1) is index 0
         int32_t maxI = 0, maxJ = 0;    // width − 1, height − 1
-        int32_t stride = 0;            // width + 1 footprints per row; 0 when there are no footprints
+        int32_t stride = 0;            // width + 1; 0 when there are no footprints
         bool operator==(const FootprintGrid& other) const = default;
     };
     FootprintGrid grid_;
@@ -369,8 +373,7 @@ inline glm::vec4 Texture2D::filterFootprint(int i, int j, float alpha, float bet
 #if defined(__SSSE3__)
     // The four channels at once, as sampleFootprints does eight pixels: the same integers and the
     // same three float roundings per channel.
-    const __m128i by_channel = _mm_setr_epi8(0, 4, 8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15);
-    const __m128i bytes = _mm_shuffle_epi8(_mm_loadu_si128(reinterpret_cast<const __m128i*>(f)), by_channel);
+    const __m128i bytes = _mm_loadu_si128(reinterpret_cast<const __m128i*>(f));
     const int wa = (255 - a) | (a << 8);
     const __m128i low = _mm_srai_epi16(_mm_slli_epi16(bytes, 8), 8);
     const __m128i rows = _mm_add_epi16(_mm_maddubs_epi16(_mm_set1_epi32(wa | (wa << 16)), bytes), low);
@@ -379,7 +382,8 @@ inline glm::vec4 Texture2D::filterFootprint(int i, int j, float alpha, float bet
                                      _mm_set1_ps(detail::kFootprintScale)));
 #else
     for (int c = 0; c < 4; ++c) {
-        const int top = (256 - a) * f[c] + a * f[4 + c], bottom = (256 - a) * f[8 + c] + a * f[12 + c];
+        const int8_t* t = f + 4 * c;  // channel c of texels 00, 10, 01, 11
+        const int top = (256 - a) * t[0] + a * t[1], bottom = (256 - a) * t[2] + a * t[3];
         const int sum = (detail::kFootprintBetaOne - b) * top + b * bottom;
         out[c] = (float(sum) + detail::kFootprintBiasSum) * detail::kFootprintScale;
     }
@@ -426,22 +430,23 @@ struct Bilinear8 {
 [[gnu::always_inline]] inline glm::vec<4, Float8> Texture2D::sampleFootprints(const glm::vec<2, Float8>& uv) const {
     // filterLevel's linear filter with clamped addressing, i.e. filterFootprint, lane by lane the
     // same operations.
-    const auto [i, j, alpha, beta] = detail::bilinear8(uv, Float8(grid_.width), Float8(grid_.height));
-    // One 16-byte load per lane, then a transpose into one register per channel holding, per
-    // lane, the channel's bytes of the four texels (00, 10, 01, 11).
-    const Int8 ii = max(Int8(-1), min(i, Int8(grid_.maxI))) + Int8(1);
-    const Int8 jj = max(Int8(-1), min(j, Int8(grid_.maxJ))) + Int8(1);
-    // Byte offsets, unsigned so that each lane's address needs no sign extension.
-    const Int8 offset = (jj * Int8(grid_.stride) + ii) << 4;
+    // bilinear8 with the coordinates clamped to [−1, w−1] × [−1, h−1] in float rather than the
+    // footprint indices in integers: a coordinate clamped there selects the same footprint, whose two
+    // texels along that axis are then equal, so its weight cannot change the sum; NaN lands on −1.
+    const Float8 a = min(max(uv.x * Float8(grid_.width) - Float8(0.5f), Float8(-1.0f)), Float8(grid_.lastI));
+    const Float8 b = min(max(uv.y * Float8(grid_.height) - Float8(0.5f), Float8(-1.0f)), Float8(grid_.lastJ));
+    const Float8 i = floor(a), j = floor(b);
+    const Float8 alpha = a - i, beta = b - j;
+    // The footprint's byte offset, the index (j + 1)·stride + (i + 1) exact in float (below 2^19),
+    // unsigned so that each lane's address needs no sign extension.
+    const Int8 offset = toInt(j * Float8(grid_.rowStride) + i + Float8(grid_.originIndex)) << 4;
     const simd::U32x8 index = simd::U32x8(offset.v);
     const uint8_t* f = footprints_.data();
     auto load = [&](int l) { return _mm_loadu_si128(reinterpret_cast<const __m128i*>(f + index[l])); };
-    const __m256i by_channel = _mm256_setr_epi8(0, 4, 8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15, 0, 4, 8, 12, 1,
-                                                5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15);
-    const __m256i y0 = _mm256_shuffle_epi8(_mm256_set_m128i(load(4), load(0)), by_channel);
-    const __m256i y1 = _mm256_shuffle_epi8(_mm256_set_m128i(load(5), load(1)), by_channel);
-    const __m256i y2 = _mm256_shuffle_epi8(_mm256_set_m128i(load(6), load(2)), by_channel);
-    const __m256i y3 = _mm256_shuffle_epi8(_mm256_set_m128i(load(7), load(3)), by_channel);
+    // One 16-byte load per lane (channel-major already), then a transpose into one register per
+    // channel holding, per lane, the channel's bytes of the four texels (00, 10, 01, 11).
+    const __m256i y0 = _mm256_set_m128i(load(4), load(0)), y1 = _mm256_set_m128i(load(5), load(1));
+    const __m256i y2 = _mm256_set_m128i(load(6), load(2)), y3 = _mm256_set_m128i(load(7), load(3));
     const __m256i t0 = _mm256_unpacklo_epi32(y0, y1), t1 = _mm256_unpackhi_epi32(y0, y1);
     const __m256i t2 = _mm256_unpacklo_epi32(y2, y3), t3 = _mm256_unpackhi_epi32(y2, y3);
     const Int8 channel[4] = {simd::I32x8(_mm256_unpacklo_epi64(t0, t2)), simd::I32x8(_mm256_unpackhi_epi64(t0, t2)),
@@ -449,13 +454,13 @@ struct Bilinear8 {
     // filterFootprint's arithmetic, eight lanes at once. Weights per lane: the bytes (255 − a, a)
     // twice, for PMADDUBSW's pairs (t00, t10) and (t01, t11), whose missing 1·t0 (256 − a does not fit
     // a byte) is added from the pair's low byte; then the words (2^14 − b, b) for PMADDWD's rows.
-    const __m256i a = _mm256_min_epi32(_mm256_cvtps_epi32(__m256((alpha * Float8(detail::kFootprintAlphaScale)).v)),
-                                       _mm256_set1_epi32(detail::kFootprintAlphaMax));
-    const __m256i wa16 = _mm256_or_si256(_mm256_slli_epi32(a, 8), _mm256_xor_si256(a, _mm256_set1_epi32(255)));
+    const __m256i wa8 = _mm256_min_epi32(_mm256_cvtps_epi32(__m256((alpha * Float8(detail::kFootprintAlphaScale)).v)),
+                                         _mm256_set1_epi32(detail::kFootprintAlphaMax));
+    const __m256i wa16 = _mm256_or_si256(_mm256_slli_epi32(wa8, 8), _mm256_xor_si256(wa8, _mm256_set1_epi32(255)));
     const __m256i wa = _mm256_or_si256(wa16, _mm256_slli_epi32(wa16, 16));
-    const __m256i b = _mm256_cvtps_epi32(__m256((beta * Float8(detail::kFootprintBetaScale)).v));
-    const __m256i wb = _mm256_or_si256(_mm256_slli_epi32(b, 16),
-                                       _mm256_sub_epi32(_mm256_set1_epi32(detail::kFootprintBetaOne), b));
+    const __m256i wb14 = _mm256_cvtps_epi32(__m256((beta * Float8(detail::kFootprintBetaScale)).v));
+    const __m256i wb = _mm256_or_si256(_mm256_slli_epi32(wb14, 16),
+                                       _mm256_sub_epi32(_mm256_set1_epi32(detail::kFootprintBetaOne), wb14));
     auto filter = [&](int c) {
         const __m256i bytes = __m256i(channel[c].v);
         const __m256i low = _mm256_srai_epi16(_mm256_slli_epi16(bytes, 8), 8);  // t00, t01 as words
