@@ -14,9 +14,13 @@ struct PositionIn {
     RASTER_INPUT_SIGNATURE(PositionIn, RASTER_INPUT(position, "POSITION", 0))
 };
 
-struct PositionOnly {
-    glm::vec4 position;
+// A template over its scalar type, so that a pixel shader reading it can run eight wide
+// (shader.hpp's Wide).
+template <class T>
+struct PositionOnlyT {
+    glm::vec<4, T> position;
 };
+using PositionOnly = PositionOnlyT<float>;
 
 struct VsTransform {
     glm::mat4 viewProj{1.0f};
@@ -24,8 +28,12 @@ struct VsTransform {
 };
 
 struct PsConstant {
+    using Input = PositionOnly;
     glm::vec4 color{1.0f};
-    glm::vec4 operator()(const PositionOnly&) const { return color; }
+    template <class T>
+    glm::vec<4, T> operator()(const PositionOnlyT<T>&) const {
+        return glm::vec<4, T>(T(color.x), T(color.y), T(color.z), T(color.w));
+    }
 };
 
 }  // namespace raster::shaders
