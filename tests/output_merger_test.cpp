@@ -1,9 +1,11 @@
 #include "raster/stages/output_merger.hpp"
+#include "raster/stages/merge_policy.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <iterator>
 #include <limits>
@@ -413,6 +415,49 @@ TEST(FastBlender, ReplaceIsBitIdenticalToMergeFragment) {
 TEST(FastBlender, AdditiveIsBitIdenticalToMergeFragment) {
     expectSameAsMergeFragment<BlendAdditiveRgba8>(BlendState::additive().renderTarget[0]);
 }
+
+// The eight-wide merge the fast pipeline's block loops store through (ColorFast::writeWide, a 4×2
+// block) against the scalar blender, lane by lane: the same sources as above, including NaN, ±∞,
+// negatives and values above 1, under full, partial and empty lane masks.
+template <class Blender>
+void expectWideSameAsScalar() {
+    const std::vector<float> grid = sourceGrid();
+    const size_t g = grid.size();
+    std::vector<uint8_t> wide(32), scalar(32);
+    const ColorFast<Blender> color{wide.data(), 4};
+    int mismatches = 0, lanes_checked = 0;
+    for (size_t i = 0; i < g; ++i) {
+        for (size_t j = 0; j < g; ++j) {
+            float lanes[4][8];
+            for (size_t l = 0; l < 8; ++l) {
+                lanes[0][l] = grid[(i + l) % g], lanes[1][l] = grid[(3 * i + l + 7) % g];
+                lanes[2][l] = grid[(j + 2 * l) % g], lanes[3][l] = grid[(j + 5 * l) % g];
+            }
+            auto channel = [&](int k) {
+                simd::F32x8 v;
+                std::memcpy(&v, lanes[k], sizeof v);
+                return Float8(v);
+            };
+            const glm::vec<4, Float8> c(channel(0), channel(1), channel(2), channel(3));
+            for (const uint32_t mask : {0xFFu, 0x00u, 0x5Au, uint32_t(i * 31 + j * 7) & 0xFFu}) {
+                for (size_t b = 0; b < 32; ++b) wide[b] = scalar[b] = uint8_t(i * 11 + j * 3 + b * 29);
+                color.writeWide(0, 0, c, mask);
+                for (int l = 0; l < 8; ++l) {
+                    if (mask >> l & 1u) {
+                        Blender::apply(&scalar[size_t(4 * l)], glm::vec4(c.x[l], c.y[l], c.z[l], c.w[l]));
+                        ++lanes_checked;
+                    }
+                }
+                if (wide != scalar && ++mismatches <= 5) ADD_FAILURE() << "sources " << i << ", " << j << " mask " << mask;
+            }
+        }
+    }
+    EXPECT_EQ(mismatches, 0);
+    EXPECT_GT(lanes_checked, int(g * g * 8));
+}
+
+TEST(FastBlender, EightWideAdditiveIsTheScalarBlenderLaneByLane) { expectWideSameAsScalar<BlendAdditiveRgba8>(); }
+TEST(FastBlender, EightWideReplaceIsTheScalarBlenderLaneByLane) { expectWideSameAsScalar<BlendReplaceRgba8>(); }
 
 // Additive blending on a UNORM target adds the same bytes to every destination: the source term is
 // rounded alone (in units of 1/255) and the destination byte added exactly, then clamped at 255. The

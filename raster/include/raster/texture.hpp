@@ -172,6 +172,13 @@ class Texture2D {
         bool operator==(const FootprintGrid& other) const = default;
     };
     FootprintGrid grid_;
+    // Whether footprints exist and `sampler` clamps both axes: the fixed-point filter's condition
+    // shared by the scalar and eight-wide paths, which add what each needs besides (a Linear filter,
+    // not reference mode). `&`, not `&&`: see Sample(Float8).
+    bool footprintsClamp(const SamplerState& sampler) const {
+        return (grid_.stride != 0) & (sampler.addressU == AddressMode::Clamp) &
+               (sampler.addressV == AddressMode::Clamp);
+    }
     glm::vec<4, Float8> sampleFootprints(const glm::vec<2, Float8>& uv) const;
     // The same fixed-point filter for one pixel: footprint (i, j) (clamped here), weights α, β.
     glm::vec4 filterFootprint(int i, int j, float alpha, float beta) const;
@@ -317,8 +324,7 @@ template <class T>
     const T alpha = a - T(i), beta = b - T(j);
     if constexpr (std::is_same_v<T, float>) {
         // Footprints exist only for one-level textures, so `level` is level 0.
-        if (grid_.stride != 0 && sampler.addressU == AddressMode::Clamp && sampler.addressV == AddressMode::Clamp)
-            return filterFootprint(i, j, alpha, beta);
+        if (footprintsClamp(sampler)) return filterFootprint(i, j, alpha, beta);
     }
     int x0, x1, y0, y1;
     detail::addressTexelPair(sampler.addressU, i, level.width, x0, x1);
@@ -479,9 +485,8 @@ template <class UV>
     // The lecture's case first, with as few loads as the tests allow (see FootprintGrid). `&`, not
     // `&&`: GCC merges the four byte tests of `&&` into one 32-bit load of the sampler, which the
     // pixel loop has just rebuilt on the stack byte by byte, and that load cannot be forwarded.
-    const bool bilinear_clamp = (sampler.minFilter == Filter::Linear) & (sampler.magFilter == Filter::Linear) &
-                                (sampler.addressU == AddressMode::Clamp) & (sampler.addressV == AddressMode::Clamp);
-    if (grid_.stride != 0 && bilinear_clamp && !inReferenceMode()) {
+    const bool bilinear = (sampler.minFilter == Filter::Linear) & (sampler.magFilter == Filter::Linear);
+    if (footprintsClamp(sampler) & bilinear && !inReferenceMode()) {
 #if defined(__AVX2__)
         return sampleFootprints(uv);
 #else
