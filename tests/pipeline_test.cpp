@@ -17,6 +17,7 @@
 #include "raster/check.hpp"
 #include "raster/scenes.hpp"
 #include "raster/shaders/basic.hpp"
+#include "raster/trace.hpp"
 
 namespace raster {
 namespace {
@@ -472,6 +473,33 @@ TEST(PipelineStatisticsTest, ParticlesCountGeometryShaderWork) {
     ctx.resetFrameStatistics();
     EXPECT_TRUE(ctx.frameStatistics() == PipelineStatistics{});
     EXPECT_TRUE(ctx.drawStatistics() == draw) << "the reset leaves the last draw's statistics";
+}
+
+// The eight-wide rectangle loop counts invocations and early depth kills per rectangle, not per
+// fragment (helpers = 8·blocks − invocations, kills = covered − invocations). The traced draw goes
+// fragment by fragment through 2×2 quads: both must count the same fragments. Widths that are not a
+// multiple of 4 send the last column of tiles through the lane-by-lane fallback.
+TEST(PipelineStatisticsTest, ParticlesCountTheSameFragmentsEightWideAndTraced) {
+    for (const auto& [w, h] : {std::pair{320u, 180u}, std::pair{318u, 181u}}) {
+        auto scene = makeScene("particles", {.width = w, .height = h, .count = 900});
+        auto drawStatistics = [&](bool traced) {
+            Context ctx(ContextOptions{.threads = 2});
+            RenderTarget color(w, h);
+            DepthTarget depth(w, h);
+            Trace trace({.pixels = TraceOptions::everything(), .geometry = false});
+            if (traced) ctx.setTrace(&trace);
+            scene->render(ctx, color, depth);
+            return ctx.drawStatistics();
+        };
+        const PipelineStatistics wide = drawStatistics(false), traced = drawStatistics(true);
+        EXPECT_GT(wide.psInvocations, 20000u) << w;
+        EXPECT_GT(wide.fragmentsEarlyDepthKilled, 1000u) << w;
+        EXPECT_GT(wide.fragmentsBlendNoOp, 1000u) << w;
+        EXPECT_EQ(wide.psInvocations, traced.psInvocations) << w;
+        EXPECT_EQ(wide.fragmentsEarlyDepthKilled, traced.fragmentsEarlyDepthKilled) << w;
+        EXPECT_EQ(wide.fragmentsBlendNoOp, traced.fragmentsBlendNoOp) << w;
+        EXPECT_GT(wide.helperInvocations, 0u) << w;
+    }
 }
 
 TEST(ContextClear, BandsOnAnyThreadCountGiveTheTargetsOwnClear) {
