@@ -204,6 +204,23 @@ TEST(Float8, MinMaxReturnTheSecondOperandForNaN) {
     EXPECT_EQ(floor(Float8(2.0f))[1], 2.0f);
 }
 
+TEST(Float8, FmaRoundsOnceLikeStdFma) {
+    // (1 + 2^-12)² − (1 + 2^-11) = 2^-24 exactly; the product alone rounds to 1 + 2^-11 (floats
+    // above 1 are 2^-23 apart), so an unfused multiply-add gives 0.
+    const float a = 1.0f + 0x1p-12f, c = -(1.0f + 0x1p-11f);
+    EXPECT_EQ(fma(a, a, c), 0x1p-24f);
+    EXPECT_EQ(fma(Float8(a), Float8(a), Float8(c))[6], 0x1p-24f);
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> d(-3.0f, 3.0f);
+    for (int round = 0; round < 1000; ++round) {
+        Float8 x, y, z;
+        for (int i = 0; i < 8; ++i) x.set(i, d(rng)), y.set(i, d(rng)), z.set(i, d(rng));
+        const Float8 r = fma(x, y, z);
+        for (int i = 0; i < 8; ++i)
+            ASSERT_EQ(__builtin_bit_cast(int32_t, r[i]), __builtin_bit_cast(int32_t, std::fma(x[i], y[i], z[i])));
+    }
+}
+
 TEST(FastMath, EightWideEqualsScalar) {
     std::mt19937 rng(3);
     std::uniform_real_distribution<float> d(-90.0f, 90.0f);

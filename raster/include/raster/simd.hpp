@@ -6,7 +6,7 @@
 // pixel blocks in one call; lanes 0–3 are the block's top row left to right, 4–7 the bottom row,
 // so lanes (0,1,4,5) and (2,3,6,7) are the two 2×2 quads derivatives are taken in. Results are the
 // same bits as the scalar path: every operation here is the IEEE operation the scalar code does,
-// lane by lane (no fused multiply-add, no approximate reciprocal).
+// lane by lane (a multiply-add is fused only where fma() says so; no approximate reciprocal).
 //
 // Portable GCC/Clang vector extensions; AVX2 intrinsics where they exist for floor and gathers.
 #pragma once
@@ -195,6 +195,21 @@ inline float sqrt(float a) { return __builtin_sqrtf(a); }
 inline float abs(float a) { return __builtin_fabsf(a); }
 inline Float8 abs(Float8 a) { return simd::F32x8(simd::I32x8(a.v) & 0x7FFFFFFF); }
 
+// a·b + c rounded once (IEEE fusedMultiplyAdd), lane by lane the same bits as std::fma. Only where
+// it is written: the build keeps -ffp-contract=off, so the compiler never fuses on its own and an
+// image does not depend on its choices. One instruction with FMA hardware; without it the C
+// library's (exact, slow) fmaf.
+inline float fma(float a, float b, float c) { return __builtin_fmaf(a, b, c); }
+inline Float8 fma(Float8 a, Float8 b, Float8 c) {
+#if defined(__FMA__)
+    return simd::F32x8(_mm256_fmadd_ps(__m256(a.v), __m256(b.v), __m256(c.v)));
+#else
+    Float8 r;
+    for (int i = 0; i < 8; ++i) r.v[i] = __builtin_fmaf(a.v[i], b.v[i], c.v[i]);
+    return r;
+#endif
+}
+
 // exp and expm1 for shaders, over float and Float8 with the same arithmetic (so the scalar and the
 // eight-wide path agree bit for bit): Cody–Waite range reduction x = k·ln2 + r, |r| ≤ ln2/2, a
 // degree-8 Taylor polynomial for e^r − 1 (truncation error < 1e-9 relative), and an exact scaling
@@ -228,10 +243,17 @@ auto expReduce(T x) {
     const T kf = x * T(1.44269504088896341f);
     const auto k = toIntRound(kf);
     const T k_real = toFloatI(k);
-    const T r = (x - k_real * T(0.693359375f)) - k_real * T(-2.12194440e-4f);
-    // Degree 7: the next term, r^8/8!, is below 5.3e-9 for |r| ≤ ln2/2, a tenth of float's half ulp.
-    const T p = r * (T(1.0f) + r * (T(0.5f) + r * (T(1.0f / 6.0f) + r * (T(1.0f / 24.0f) + r * (T(1.0f / 120.0f) +
-                r * (T(1.0f / 720.0f) + r * T(1.0f / 5040.0f)))))));
+    // x − k·ln2 with ln2 in two parts, each product rounded once with its subtraction.
+    const T r = fma(k_real, T(2.12194440e-4f), fma(k_real, T(-0.693359375f), x));
+    // Degree 7 by Horner, one rounding a step: the next term, r^8/8!, is below 5.3e-9 for
+    // |r| ≤ ln2/2, a tenth of float's half ulp.
+    T p = fma(r, T(1.0f / 5040.0f), T(1.0f / 720.0f));
+    p = fma(r, p, T(1.0f / 120.0f));
+    p = fma(r, p, T(1.0f / 24.0f));
+    p = fma(r, p, T(1.0f / 6.0f));
+    p = fma(r, p, T(0.5f));
+    p = fma(r, p, T(1.0f));
+    p = p * r;
     return std::make_tuple(k, p);
 }
 }  // namespace detail
@@ -244,7 +266,7 @@ T fastExp(T x) {
     const auto k1 = detail::halfOf(k);
     const T half1 = detail::bitsToFloat((k1 + 127) << 23);
     const T half2 = detail::bitsToFloat((k - k1 + 127) << 23);
-    const T result = ((T(1.0f) + p) * half1) * half2;
+    const T result = fma(p, half1, half1) * half2;  // (1 + p)·2^k1 with one rounding
     const T zero(0.0f), inf(__builtin_inff());
     return select(x < T(-87.3f), zero, select(x > T(88.72f), inf, select(x != x, x, result)));
 }
@@ -258,7 +280,7 @@ T fastExpm1(T x) {
     auto [k, p] = detail::expReduce(xc);
     const auto kk = min(k, decltype(k)(127));
     const T two_k = detail::bitsToFloat((kk + 127) << 23);
-    const T result = two_k * p + (two_k - T(1.0f));
+    const T result = fma(two_k, p, two_k - T(1.0f));
     return select(x > T(88.72f), T(__builtin_inff()), result);
 }
 
