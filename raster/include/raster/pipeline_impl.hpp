@@ -3,6 +3,7 @@
 
 #include <bit>
 #include <memory>
+#include <optional>
 #include <type_traits>
 #include <variant>
 
@@ -787,11 +788,12 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                 // ~0 where no fragment of this draw passed.
                 alignas(32) uint32_t owner[kTileSize][kTileSize];
                 std::fill_n(&owner[0][0], kTileSize * kTileSize, ~0u);
-                // Triangles with a fragment that passed: the others need no second pass.
-                static thread_local std::vector<uint8_t> passed_any;
-                passed_any.assign(triangles, 0);
+                // The tile's triangles by their place in its list, for the second pass.
+                static thread_local std::vector<std::pair<const detail::Chunk<V>*, const TriangleSetup*>> listed;
+                listed.resize(triangles);
                 uint64_t passed = 0;
-                forEachTriangle([&](const detail::Chunk<V>&, const TriangleSetup& t, uint32_t n) {
+                forEachTriangle([&](const detail::Chunk<V>& chunk, const TriangleSetup& t, uint32_t n) {
+                    listed[n] = {&chunk, &t};
                     if (occludedInTile(nearestDepth(t))) return;
                     rasterizeTriangleBlocks(t, edgeSteps(t), rect,
                                             [&](int32_t x, int32_t y, uint32_t mask, const int64_t (&e)[3][8]) {
@@ -801,7 +803,6 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                         if (!live) return;
                         depth_here.writeWide(x, y, z, live);
                         passed += uint64_t(std::popcount(live));
-                        passed_any[n] = 1;
                         uint32_t* row = &owner[y - rect.y0][x - rect.x0];
                         simd::I32x8 ids;
                         std::memcpy(&ids, row, 16);
@@ -811,25 +812,52 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                         std::memcpy(row + kTileSize, reinterpret_cast<const char*>(&ids) + 16, 16);
                     });
                 });
+                // The second pass walks the tile's blocks, not the triangles: a block is shaded once
+                // per triangle it shows, with that triangle's lanes live, and needs no rasterising.
+                // Its edge functions are edgeAt's at the block's lane 0 plus the per-lane steps,
+                // the same exact integers rasterizeTriangleBlocks steps to, so the same bits.
                 uint64_t shaded = 0;
-                forEachTriangle([&](const detail::Chunk<V>& chunk, const TriangleSetup& t, uint32_t n) {
-                    if (!passed_any[n]) return;
-                    const V* const verts[3] = {&chunk.vertices[t.vertex[0]], &chunk.vertices[t.vertex[1]],
-                                               &chunk.vertices[t.vertex[2]]};
-                    const TriangleInterpolant<Real> ti(t);
-                    rasterizeTriangleBlocks(t, edgeSteps(t), rect,
-                                            [&](int32_t x, int32_t y, uint32_t mask, const int64_t (&e)[3][8]) {
+                uint32_t current = ~0u;
+                const TriangleSetup* t = nullptr;
+                const V* verts[3] = {};
+                std::optional<TriangleInterpolant<Real>> ti;
+                simd::I64x4 top_offset[3] = {}, bottom_offset[3] = {};
+                for (int32_t y = rect.y0; y <= rect.y1; y += 2) {
+                    for (int32_t x = rect.x0; x <= rect.x1; x += 4) {
                         const uint32_t* row = &owner[y - rect.y0][x - rect.x0];
                         simd::I32x8 ids;
                         std::memcpy(&ids, row, 16);
                         std::memcpy(reinterpret_cast<char*>(&ids) + 16, row + kTileSize, 16);
-                        const uint32_t live = mask & Mask8{ids == int32_t(n)}.bits();
-                        if (!live) return;
-                        const Float8 z = interpolateDepthWide(t, e, min_depth, max_depth);
-                        color_here.writeWide(x, y, shadeBlockWide(shader_here, ti, e, verts, x, y, z, live), live);
-                        shaded += uint64_t(std::popcount(live));
-                    });
-                });
+                        uint32_t pending = ~Mask8{ids == -1}.bits() & 0xFFu;
+                        while (pending) {
+                            const uint32_t n = uint32_t(ids[std::countr_zero(pending)]);
+                            const uint32_t live = Mask8{ids == int32_t(n)}.bits();
+                            pending &= ~live;
+                            if (n != current) {
+                                current = n;
+                                const auto [chunk, setup] = listed[n];
+                                t = setup;
+                                for (int k = 0; k < 3; ++k) verts[k] = &chunk->vertices[t->vertex[k]];
+                                ti.emplace(*t);
+                                const EdgeSteps steps = edgeSteps(*t);
+                                for (int k = 0; k < 3; ++k) {
+                                    top_offset[k] = simd::I64x4{0, steps.dx[k], 2 * steps.dx[k], 3 * steps.dx[k]};
+                                    bottom_offset[k] = top_offset[k] + steps.dy[k];
+                                }
+                            }
+                            alignas(32) int64_t e[3][8];
+                            for (int k = 0; k < 3; ++k) {
+                                const int64_t e0 = edgeAt(*t, k, x, y);
+                                const simd::I64x4 top = e0 + top_offset[k], bottom = e0 + bottom_offset[k];
+                                std::memcpy(&e[k][0], &top, sizeof top);
+                                std::memcpy(&e[k][4], &bottom, sizeof bottom);
+                            }
+                            const Float8 z = interpolateDepthWide(*t, e, min_depth, max_depth);
+                            color_here.writeWide(x, y, shadeBlockWide(shader_here, *ti, e, verts, x, y, z, live), live);
+                            shaded += uint64_t(std::popcount(live));
+                        }
+                    }
+                }
                 st.fragmentsOverdrawSkipped += passed - shaded;
                 return true;
             } else {
