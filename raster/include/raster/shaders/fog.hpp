@@ -43,7 +43,7 @@ struct FogMedium {
     T opticalDepth(float y0, T dy, T s) const {
         if (!height) return s;
         const T k = T(b) * dy;
-        return T(std::exp(b * y0)) * s * expm1OverX(k * s);
+        return T(exp(b * y0)) * s * expm1OverX(k * s);
     }
     // The same to s = ∞: e^{b·y0}/(−k) for a ray rising into thinning fog (k < 0), else ∞.
     template <class T>
@@ -51,7 +51,7 @@ struct FogMedium {
         const T inf(std::numeric_limits<float>::infinity());
         if (!height) return inf;
         const T k = T(b) * dy;
-        return select(k < T(0.0f), T(std::exp(b * y0)) / -k, inf);
+        return select(k < T(0.0f), T(exp(b * y0)) / -k, inf);
     }
 
     // Radiance at the eye from a surface of radiance L0 seen through optical depth tau (may be ∞).

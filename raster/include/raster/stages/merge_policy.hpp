@@ -155,6 +155,7 @@ struct ColorFast {
             // up, then the destination byte added exactly, clamped at 255.
             const Float8 sa = detail::saturate8(c.w);
             const Float8 sa255 = sa * Float8(255.0f), half(0.5f);
+            a = toInt(sa * sa255 + half);
 #if defined(__AVX2__)
             // The colours clamped at 1 only: PACKUSDW below turns what saturate's 0 would have made
             // 0 into 0 as well (a product in (−1, 0.5) truncates to 0, a lower one or a NaN, kept
@@ -163,7 +164,6 @@ struct ColorFast {
                 return Int8(simd::I32x8(_mm256_cvttps_epi32(__m256((min(Float8(1.0f), s) * sa255 + half).v))));
             };
             r = units(c.x), g = units(c.y), b = units(c.z);
-            a = toInt(sa * sa255 + half);
             // Per 128-bit half (one row): bytes r0..r3 g0..g3 b0..b3 a0..a3, transposed to pixels and
             // added with unsigned saturation.
             const __m256i planar = _mm256_packus_epi16(_mm256_packus_epi32(__m256i(r.v), __m256i(g.v)),
@@ -179,7 +179,6 @@ struct ColorFast {
             r = toInt(detail::saturate8(c.x) * sa255 + half);
             g = toInt(detail::saturate8(c.y) * sa255 + half);
             b = toInt(detail::saturate8(c.z) * sa255 + half);
-            a = toInt(sa * sa255 + half);
             const Int8 k255(255);
             r = min(k255, r + (old & Int8(0xFF))), g = min(k255, g + ((old >> 8) & Int8(0xFF)));
             b = min(k255, b + ((old >> 16) & Int8(0xFF))), a = min(k255, a + ((old >> 24) & Int8(0xFF)));
