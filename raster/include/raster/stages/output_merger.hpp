@@ -222,6 +222,24 @@ glm::vec<4, Real> blendColor(const RenderTargetBlendDesc& d, glm::vec<4, Real> s
 // division by 255 and the source term is exact unless source and factor need more than 53 significant
 // bits together (then off by at most about 2^-44 of a step). For FLOAT it computes in double and
 // rounds once, to float.
+namespace detail {
+// mergeFragment<float>'s Add/One channels (the additive blends): the source term alone rounded in
+// units of 1/255 and the destination byte n added exactly, as the reference does. Out of line: the
+// other blend states, which the generic merger mostly serves, then keep their loop small (inlined
+// here, it made GCC move saturate out of line; docs/PERFORMANCE.md has the measurements).
+[[gnu::noinline]] inline void addWithDestinationOne(const RenderTargetBlendDesc& d, const glm::vec4& s,
+                                                    const glm::vec4& src1, const glm::vec4& factor,
+                                                    const glm::vec4& dst, const uint8_t* pixel, uint8_t (&out)[4]) {
+    const glm::vec4 s1 = saturate(src1), f = saturate(factor);
+    if (d.blendOp == BlendOp::Add && d.destBlend == Blend::One) {
+        const glm::vec4 sf = blendFactor(d.srcBlend, s, s1, dst, f, 1.0f);
+        for (int c = 0; c < 3; ++c) out[c] = addUnits255(pixel[c], s[c], sf[c]);
+    }
+    if (d.blendOpAlpha == BlendOp::Add && d.destBlendAlpha == Blend::One)
+        out[3] = addUnits255(pixel[3], s.w, blendFactor(d.srcBlendAlpha, s, s1, dst, f, 1.0f).w);
+}
+}  // namespace detail
+
 template <class Real>
 void mergeFragment(RenderTarget& rt, uint32_t x, uint32_t y, const RenderTargetBlendDesc& d,
                    const glm::vec4& src, const glm::vec4& src1, const glm::vec4& factor) {
@@ -240,23 +258,15 @@ void mergeFragment(RenderTarget& rt, uint32_t x, uint32_t y, const RenderTargetB
             if (!d.blendEnable) {
                 for (int c = 0; c < 4; ++c) out[c] = floatToUnorm8(s[c]);
             } else {
-                const glm::vec4 s1 = detail::saturate(src1), f = detail::saturate(factor);
                 const glm::vec4 dst(unorm8ToFloat(pixel[0]), unorm8ToFloat(pixel[1]), unorm8ToFloat(pixel[2]),
                                     unorm8ToFloat(pixel[3]));
-                // Add with destination factor One keeps the destination byte n exact, as the reference
-                // does: the source term alone is rounded, in units of 1/255, and n added after.
                 const bool add_one = d.blendOp == BlendOp::Add && d.destBlend == Blend::One;
                 const bool add_one_alpha = d.blendOpAlpha == BlendOp::Add && d.destBlendAlpha == Blend::One;
                 if (!add_one || !add_one_alpha) {
-                    const glm::vec4 result = blendColor(d, s, s1, dst, f);
+                    const glm::vec4 result = blendColor(d, s, detail::saturate(src1), dst, detail::saturate(factor));
                     for (int c = 0; c < 4; ++c) out[c] = floatToUnorm8(result[c]);
                 }
-                if (add_one) {
-                    const glm::vec4 sf = detail::blendFactor(d.srcBlend, s, s1, dst, f, 1.0f);
-                    for (int c = 0; c < 3; ++c) out[c] = detail::addUnits255(pixel[c], s[c], sf[c]);
-                }
-                if (add_one_alpha)
-                    out[3] = detail::addUnits255(pixel[3], s.w, detail::blendFactor(d.srcBlendAlpha, s, s1, dst, f, 1.0f).w);
+                if (add_one || add_one_alpha) detail::addWithDestinationOne(d, s, src1, factor, dst, pixel, out);
             }
         }
         for (int c = 0; c < 4; ++c)
