@@ -206,22 +206,6 @@ glm::vec<4, Real> blendColor(const RenderTargetBlendDesc& d, glm::vec<4, Real> s
     return out;
 }
 
-// Applies one fragment to pixel (x, y) of rt (x < width, y < height), by the D3D11 rules for its format:
-//  - blending off (d.blendEnable false): the pixel becomes src;
-//  - blending on: the pixel becomes blendColor(d, src, src1, pixel, factor);
-//  - R8G8B8A8_UNORM: src, src1 and factor are first clamped to [0, 1] (NaN -> 0), the pixel is read as
-//    n / 255, and the result is clamped and stored rounding to nearest, ties up (floatToUnorm8);
-//  - R32G32B32A32_FLOAT: nothing is clamped;
-//  - a channel whose bit in d.renderTargetWriteMask is 0 keeps its value.
-// Real = float computes in float and rounds as floatToUnorm8 does (f * 255 + 0.5 in float, so a value a
-// hair below a tie can round up); where the op is Add and the destination factor One (the additive
-// blends), it rounds the source term alone in units of 1/255 and adds the destination byte exactly
-// (detail::addUnits255), which is both cheaper and closer to the reference. Real = double is the reference: for UNORM it evaluates the blend in
-// double in units of 1/255, where the destination byte n is exactly n, and rounds once, to nearest with
-// ties up. The stored byte is the exact result so rounded: the destination term is exact up to one
-// division by 255 and the source term is exact unless source and factor need more than 53 significant
-// bits together (then off by at most about 2^-44 of a step). For FLOAT it computes in double and
-// rounds once, to float.
 namespace detail {
 // mergeFragment<float>'s Add/One channels (the additive blends): the source term alone rounded in
 // units of 1/255 and the destination byte n added exactly, as the reference does. Out of line: the
@@ -240,6 +224,23 @@ namespace detail {
 }
 }  // namespace detail
 
+// Applies one fragment to pixel (x, y) of rt (x < width, y < height), by the D3D11 rules for its format:
+//  - blending off (d.blendEnable false): the pixel becomes src;
+//  - blending on: the pixel becomes blendColor(d, src, src1, pixel, factor);
+//  - R8G8B8A8_UNORM: src, src1 and factor are first clamped to [0, 1] (NaN -> 0), the pixel is read as
+//    n / 255, and the result is clamped and stored rounding to nearest, ties up (floatToUnorm8);
+//  - R32G32B32A32_FLOAT: nothing is clamped;
+//  - a channel whose bit in d.renderTargetWriteMask is 0 keeps its value.
+// Real = float computes in float and rounds as floatToUnorm8 does (f * 255 + 0.5 in float, so a
+// value a hair below a tie can round up); where the op is Add and the destination factor One (the
+// additive blends), it rounds the source term alone in units of 1/255 and adds the destination byte
+// exactly (detail::addUnits255), which is both cheaper and closer to the reference.
+// Real = double is the reference: for UNORM it evaluates the blend in double in units of 1/255,
+// where the destination byte n is exactly n, and rounds once, to nearest with ties up. The stored
+// byte is the exact result so rounded: the destination term is exact up to one division by 255 and
+// the source term is exact unless source and factor need more than 53 significant bits together
+// (then off by at most about 2^-44 of a step). For FLOAT it computes in double and rounds once, to
+// float.
 template <class Real>
 void mergeFragment(RenderTarget& rt, uint32_t x, uint32_t y, const RenderTargetBlendDesc& d,
                    const glm::vec4& src, const glm::vec4& src1, const glm::vec4& factor) {
