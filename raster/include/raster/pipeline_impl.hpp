@@ -816,12 +816,17 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                 // per triangle it shows, with that triangle's lanes live, and needs no rasterising.
                 // Its edge functions are edgeAt's at the block's lane 0 plus the per-lane steps,
                 // the same exact integers rasterizeTriangleBlocks steps to, so the same bits.
+                // What shading a block of triangle n needs, found when the walk meets n (mostly once
+                // per run of blocks: neighbours usually show the same triangle).
+                struct Shown {
+                    const TriangleSetup* t;
+                    const V* verts[3];
+                    TriangleInterpolant<Real> ti;
+                    BlockLaneOffsets lanes;
+                };
+                std::optional<Shown> shown;
+                uint32_t shown_id = ~0u;
                 uint64_t shaded = 0;
-                uint32_t current = ~0u;
-                const TriangleSetup* t = nullptr;
-                const V* verts[3] = {};
-                std::optional<TriangleInterpolant<Real>> ti;
-                simd::I64x4 top_offset[3] = {}, bottom_offset[3] = {};
                 for (int32_t y = rect.y0; y <= rect.y1; y += 2) {
                     for (int32_t x = rect.x0; x <= rect.x1; x += 4) {
                         const uint32_t* row = &owner[y - rect.y0][x - rect.x0];
@@ -833,27 +838,27 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                             const uint32_t n = uint32_t(ids[std::countr_zero(pending)]);
                             const uint32_t live = Mask8{ids == int32_t(n)}.bits();
                             pending &= ~live;
-                            if (n != current) {
-                                current = n;
-                                const auto [chunk, setup] = listed[n];
-                                t = setup;
-                                for (int k = 0; k < 3; ++k) verts[k] = &chunk->vertices[t->vertex[k]];
-                                ti.emplace(*t);
-                                const EdgeSteps steps = edgeSteps(*t);
-                                for (int k = 0; k < 3; ++k) {
-                                    top_offset[k] = simd::I64x4{0, steps.dx[k], 2 * steps.dx[k], 3 * steps.dx[k]};
-                                    bottom_offset[k] = top_offset[k] + steps.dy[k];
-                                }
+                            if (n != shown_id) {
+                                const auto [chunk, t] = listed[n];
+                                shown.emplace(Shown{t,
+                                                    {&chunk->vertices[t->vertex[0]], &chunk->vertices[t->vertex[1]],
+                                                     &chunk->vertices[t->vertex[2]]},
+                                                    TriangleInterpolant<Real>(*t),
+                                                    BlockLaneOffsets(edgeSteps(*t))});
+                                shown_id = n;
                             }
                             alignas(32) int64_t e[3][8];
                             for (int k = 0; k < 3; ++k) {
-                                const int64_t e0 = edgeAt(*t, k, x, y);
-                                const simd::I64x4 top = e0 + top_offset[k], bottom = e0 + bottom_offset[k];
+                                const int64_t e0 = edgeAt(*shown->t, k, x, y);
+                                const simd::I64x4 top = e0 + shown->lanes.top[k];
+                                const simd::I64x4 bottom = e0 + shown->lanes.bottom[k];
                                 std::memcpy(&e[k][0], &top, sizeof top);
                                 std::memcpy(&e[k][4], &bottom, sizeof bottom);
                             }
-                            const Float8 z = interpolateDepthWide(*t, e, min_depth, max_depth);
-                            color_here.writeWide(x, y, shadeBlockWide(shader_here, *ti, e, verts, x, y, z, live), live);
+                            const Float8 z = interpolateDepthWide(*shown->t, e, min_depth, max_depth);
+                            const glm::vec<4, Float8> c =
+                                shadeBlockWide(shader_here, shown->ti, e, shown->verts, x, y, z, live);
+                            color_here.writeWide(x, y, c, live);
                             shaded += uint64_t(std::popcount(live));
                         }
                     }

@@ -72,6 +72,18 @@ void rasterizeTriangle(const TriangleSetup& t, const EdgeSteps& s, const PixelRe
     }
 }
 
+// A 4×2 block's edge functions relative to its lane 0's: per edge, the top row's four lanes and the
+// bottom row's four, exact int64 (lane l at (l % 4, l / 4) pixels from lane 0).
+struct BlockLaneOffsets {
+    simd::I64x4 top[3], bottom[3];
+    explicit BlockLaneOffsets(const EdgeSteps& s) {
+        for (int k = 0; k < 3; ++k) {
+            top[k] = simd::I64x4{0, s.dx[k], 2 * s.dx[k], 3 * s.dx[k]};
+            bottom[k] = top[k] + s.dy[k];
+        }
+    }
+};
+
 // The same coverage walked in 4×2 blocks (x a multiple of 4, y even) for eight-wide shading:
 // visit(x, y, mask, e) with lane l at (x + l % 4, y + l / 4), mask its covered lanes and e[k][l]
 // the edge functions at each lane's centre (without the top-left bias).
@@ -108,11 +120,10 @@ void rasterizeTriangleBlocks(const TriangleSetup& t, const EdgeSteps& s, const P
     const int32_t bx0 = x0 & ~3, by0 = y0 & ~1;
     // The edge functions of a block's lanes are its lane 0's plus a per-triangle offset: exact
     // int64 arithmetic, four lanes to a vector (top row, bottom row).
-    simd::I64x4 top_offset[3], bottom_offset[3], bias[3];
+    const BlockLaneOffsets lanes(s);
+    simd::I64x4 bias[3];
     int64_t row[3];
     for (int k = 0; k < 3; ++k) {
-        top_offset[k] = simd::I64x4{0, s.dx[k], 2 * s.dx[k], 3 * s.dx[k]};
-        bottom_offset[k] = top_offset[k] + s.dy[k];
         bias[k] = simd::I64x4{} + t.bias[k];
         row[k] = edgeAt(t, k, bx0, by0);
     }
@@ -157,7 +168,7 @@ void rasterizeTriangleBlocks(const TriangleSetup& t, const EdgeSteps& s, const P
             const bool inside = x >= x_full0 && x <= x_full1;
             alignas(32) int64_t e[3][8];
             for (int k = 0; k < 3; ++k) {
-                const simd::I64x4 top = e0[k] + top_offset[k], bottom = e0[k] + bottom_offset[k];
+                const simd::I64x4 top = e0[k] + lanes.top[k], bottom = e0[k] + lanes.bottom[k];
                 std::memcpy(&e[k][0], &top, sizeof top);
                 std::memcpy(&e[k][4], &bottom, sizeof bottom);
                 if (!inside) mask &= detail::nonNegativeBits(top + bias[k], bottom + bias[k]);
