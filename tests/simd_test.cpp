@@ -2,6 +2,7 @@
 // scalar path they shortcut.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -23,9 +24,20 @@ struct PsFireScalarOnly {
     glm::vec4 operator()(const shaders::BillboardCorner& in) const { return inner(in); }
 };
 
+// psFire for float and Float8 only: the pipeline shades its rectangles one 4×2 block per call.
+struct PsFireEightOnly {
+    using Input = shaders::BillboardCorner;
+    shaders::PsFire inner;
+    glm::vec4 operator()(const shaders::BillboardCorner& in) const { return inner(in); }
+    glm::vec<4, Float8> operator()(const Wide<shaders::BillboardCorner>& in) const { return inner(in); }
+};
+
 static_assert(WidePixelShader<shaders::PsFire>);
+static_assert(PairPixelShader<shaders::PsFire>);
 static_assert(!WidePixelShader<PsFireScalarOnly>);
+static_assert(WidePixelShader<PsFireEightOnly> && !PairPixelShader<PsFireEightOnly>);
 static_assert(sizeof(Wide<shaders::BillboardCorner>) == 6 * sizeof(Float8));
+static_assert(sizeof(WidePair<shaders::BillboardCorner>) == 6 * sizeof(Float8x2));
 
 Texture2D checker(bool mipmaps) {
     std::vector<uint8_t> texels(16 * 8 * 4);
@@ -68,6 +80,17 @@ TEST(Float8, WideSampleEqualsScalarSampleBitForBit) {
                     glm::vec<2, Float8> uv;
                     for (int i = 0; i < 8; ++i) uv.x.set(i, d(rng)), uv.y.set(i, d(rng));
                     const glm::vec<4, Float8> wide = tex->Sample(s, uv);
+                    // Two blocks in one call: each half the bits of its own block's call.
+                    glm::vec<2, Float8> uv2;
+                    for (int i = 0; i < 8; ++i) uv2.x.set(i, d(rng)), uv2.y.set(i, d(rng));
+                    const glm::vec<4, Float8> wide2 = tex->Sample(s, uv2);
+                    const glm::vec<4, Float8x2> pair =
+                        tex->Sample(s, glm::vec<2, Float8x2>(Float8x2(uv.x, uv2.x), Float8x2(uv.y, uv2.y)));
+                    for (int c = 0; c < 4; ++c)
+                        for (int i = 0; i < 8; ++i) {
+                            ASSERT_EQ(std::bit_cast<uint32_t>(pair[c][i]), std::bit_cast<uint32_t>(wide[c][i]));
+                            ASSERT_EQ(std::bit_cast<uint32_t>(pair[c][8 + i]), std::bit_cast<uint32_t>(wide2[c][i]));
+                        }
                     for (int i = 0; i < 8; ++i) {
                         glm::vec4 expected;
                         if (tex->mipLevels() == 1) {
@@ -124,13 +147,22 @@ TEST(Rectangles, BillboardsAreRecognisedAndWideShadingMatchesScalar) {
     const Texture2D fire = makeFireTexture();
     shaders::PsFire wide;
     wide.billboardTexture = &fire;
-    PipelineStatistics wide_stats, scalar_stats, ref_stats;
+    PipelineStatistics wide_stats, scalar_stats, eight_stats, ref_stats;
     const RenderTarget a = renderParticles(wide, &wide_stats);
     const RenderTarget b = renderParticles(PsFireScalarOnly{wide}, &scalar_stats);
+    const RenderTarget e = renderParticles(PsFireEightOnly{wide}, &eight_stats);
     EXPECT_EQ(wide_stats.rectanglesRecognized, 3000u);
     EXPECT_EQ(wide_stats.gsPrimitives, 6000u);
     EXPECT_EQ(wide_stats.psInvocations, scalar_stats.psInvocations);
     EXPECT_TRUE(a == b) << "eight-wide shading changed the image";
+    // Two blocks per call (PsFire) against one (PsFireEightOnly): the same image and the same
+    // counts, helper lanes and blend no-ops included.
+    EXPECT_TRUE(a == e) << "shading block pairs changed the image";
+    EXPECT_EQ(wide_stats.psInvocations, eight_stats.psInvocations);
+    EXPECT_EQ(wide_stats.helperInvocations, eight_stats.helperInvocations);
+    EXPECT_EQ(wide_stats.fragmentsBlendNoOp, eight_stats.fragmentsBlendNoOp);
+    EXPECT_EQ(wide_stats.fragmentsEarlyDepthKilled, eight_stats.fragmentsEarlyDepthKilled);
+    EXPECT_GT(wide_stats.fragmentsBlendNoOp, 0u);
     // The reference pipeline draws the same billboards as two triangles each.
     const RenderTarget r = renderParticles(wide, &ref_stats, true);
     EXPECT_EQ(ref_stats.rectanglesRecognized, 0u);
@@ -219,6 +251,98 @@ TEST(Float8, FmaRoundsOnceLikeStdFma) {
         for (int i = 0; i < 8; ++i)
             ASSERT_EQ(__builtin_bit_cast(int32_t, r[i]), __builtin_bit_cast(int32_t, std::fma(x[i], y[i], z[i])));
     }
+}
+
+// Float8x2 is two Float8 side by side: every operation must give, in each half, the bits of the
+// Float8 operation on that half (the pipeline relies on it for billboard block pairs).
+TEST(Float8x2, EveryOperationIsTheFloat8OperationOnEachHalf) {
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> d(-100.0f, 100.0f);
+    const float specials[] = {0.0f, -0.0f, std::numeric_limits<float>::infinity(),
+                              -std::numeric_limits<float>::infinity(), std::nanf(""), 1e-40f, 3e38f, -1.5f};
+    auto bits = [](float f) { return std::bit_cast<uint32_t>(f); };
+    auto same = [&](Float8x2 pair, Float8 lo, Float8 hi, const char* what) {
+        for (int i = 0; i < 8; ++i) {
+            ASSERT_EQ(bits(pair[i]), bits(lo[i])) << what << " lane " << i;
+            ASSERT_EQ(bits(pair[8 + i]), bits(hi[i])) << what << " lane " << 8 + i;
+        }
+    };
+    auto sameInt = [&](Int8x2 pair, Int8 lo, Int8 hi, const char* what) {
+        for (int i = 0; i < 8; ++i) {
+            ASSERT_EQ(pair[i], lo[i]) << what << " lane " << i;
+            ASSERT_EQ(pair[8 + i], hi[i]) << what << " lane " << 8 + i;
+        }
+    };
+    const int32_t table[16] = {3, 1, 4, 1, 5, 9, 2, 6, 5, 3, 5, 8, 9, 7, 9, 3};
+    const float ftable[16] = {0.5f, -1, 2, 8, 16, 1e9f, -0.0f, 7, 6, 5, 4, 3, 2, 1, 0, -3};
+    for (int round = 0; round < 200; ++round) {
+        Float8 a[2], b[2], c[2];
+        Int8 k[2], m[2];
+        for (int h = 0; h < 2; ++h)
+            for (int i = 0; i < 8; ++i) {
+                const bool special = round % 4 == 0;
+                a[h].set(i, special ? specials[(i + h) % 8] : d(rng));
+                b[h].set(i, special ? specials[(3 * i + round) % 8] : d(rng));
+                c[h].set(i, d(rng));
+                k[h].v[i] = int32_t(rng() % 16), m[h].v[i] = int32_t(rng());
+            }
+        const Float8x2 A(a[0], a[1]), B(b[0], b[1]), C(c[0], c[1]);
+        const Int8x2 K(k[0], k[1]), M(m[0], m[1]);
+        same(A + B, a[0] + b[0], a[1] + b[1], "+");
+        same(A - B, a[0] - b[0], a[1] - b[1], "-");
+        same(A * B, a[0] * b[0], a[1] * b[1], "*");
+        same(A / B, a[0] / b[0], a[1] / b[1], "/");
+        same(-A, -a[0], -a[1], "negate");
+        Float8x2 acc = A;
+        acc += B, acc *= C, acc -= A, acc /= B;
+        same(acc, (((a[0] + b[0]) * c[0]) - a[0]) / b[0], (((a[1] + b[1]) * c[1]) - a[1]) / b[1], "compound");
+        same(min(A, B), min(a[0], b[0]), min(a[1], b[1]), "min");
+        same(max(A, B), max(a[0], b[0]), max(a[1], b[1]), "max");
+        same(floor(A), floor(a[0]), floor(a[1]), "floor");
+        same(sqrt(A), sqrt(a[0]), sqrt(a[1]), "sqrt");
+        same(abs(A), abs(a[0]), abs(a[1]), "abs");
+        same(fma(A, B, C), fma(a[0], b[0], c[0]), fma(a[1], b[1], c[1]), "fma");
+        same(exp(C * Float8x2(0.5f)), exp(c[0] * Float8(0.5f)), exp(c[1] * Float8(0.5f)), "exp");
+        same(expm1(A), expm1(a[0]), expm1(a[1]), "expm1");
+        same(select(A < B, A, C), select(a[0] < b[0], a[0], c[0]), select(a[1] < b[1], a[1], c[1]), "select");
+        same(toFloat(K), toFloat(k[0]), toFloat(k[1]), "toFloat");
+        same(gather(ftable, K), gather(ftable, k[0]), gather(ftable, k[1]), "gather");
+        sameInt(toInt(C), toInt(c[0]), toInt(c[1]), "toInt");
+        sameInt(K + M, k[0] + m[0], k[1] + m[1], "int +");
+        sameInt(K - M, k[0] - m[0], k[1] - m[1], "int -");
+        sameInt(K * M, k[0] * m[0], k[1] * m[1], "int *");
+        sameInt(K & M, k[0] & m[0], k[1] & m[1], "int &");
+        sameInt(K | M, k[0] | m[0], k[1] | m[1], "int |");
+        sameInt(M << 3, m[0] << 3, m[1] << 3, "<<");
+        sameInt(M >> 5, m[0] >> 5, m[1] >> 5, ">>");
+        sameInt(min(K, M), min(k[0], m[0]), min(k[1], m[1]), "int min");
+        sameInt(max(K, M), max(k[0], m[0]), max(k[1], m[1]), "int max");
+        sameInt(select(K < M, K, M), select(k[0] < m[0], k[0], m[0]), select(k[1] < m[1], k[1], m[1]), "int select");
+        sameInt(gather(table, K), gather(table, k[0]), gather(table, k[1]), "int gather");
+        auto maskBits = [](Mask8 lo, Mask8 hi) { return lo.bits() | (hi.bits() << 8); };
+        EXPECT_EQ((A < B).bits(), maskBits(a[0] < b[0], a[1] < b[1]));
+        EXPECT_EQ((A <= B).bits(), maskBits(a[0] <= b[0], a[1] <= b[1]));
+        EXPECT_EQ((A > B).bits(), maskBits(a[0] > b[0], a[1] > b[1]));
+        EXPECT_EQ((A >= B).bits(), maskBits(a[0] >= b[0], a[1] >= b[1]));
+        EXPECT_EQ((A == B).bits(), maskBits(a[0] == b[0], a[1] == b[1]));
+        EXPECT_EQ((A != B).bits(), maskBits(a[0] != b[0], a[1] != b[1]));
+        EXPECT_EQ((K > M).bits(), maskBits(k[0] > m[0], k[1] > m[1]));
+        EXPECT_EQ(((A < B) & (B < C)).bits(), maskBits((a[0] < b[0]) & (b[0] < c[0]), (a[1] < b[1]) & (b[1] < c[1])));
+        EXPECT_EQ(((A < B) | (B < C)).bits(), maskBits((a[0] < b[0]) | (b[0] < c[0]), (a[1] < b[1]) | (b[1] < c[1])));
+        EXPECT_EQ((!(A < B)).bits(), maskBits(!(a[0] < b[0]), !(a[1] < b[1])));
+    }
+    EXPECT_EQ(Mask8x2::fromBits(0xA55Au).bits(), 0xA55Au);
+    // Lane order, broadcasts and memory: lanes 0–7 are the first block.
+    float in[16], out[16];
+    for (int i = 0; i < 16; ++i) in[i] = float(i) - 7.5f;
+    const Float8x2 loaded = Float8x2::load(in);
+    loaded.store(out);
+    for (int i = 0; i < 16; ++i) {
+        EXPECT_EQ(loaded[i], in[i]);
+        EXPECT_EQ(out[i], in[i]);
+    }
+    EXPECT_TRUE(std::signbit(Float8x2(-0.0f)[15]));
+    EXPECT_EQ(Int8x2(-3)[9], -3);
 }
 
 TEST(FastMath, EightWideEqualsScalar) {

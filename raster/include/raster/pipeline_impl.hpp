@@ -432,6 +432,13 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
         else
             return false;
     }();
+    // Billboards shade two neighbouring blocks per call where the shader takes Float8x2 (shadePair).
+    constexpr bool kPairs = [] {
+        if constexpr (PairPixelShader<PS>)
+            return kWide;
+        else
+            return false;
+    }();
     // Opaque draws with depth writes may be shaded deferred (shadeDeferred below).
     constexpr bool kDeferrable = [] {
         if constexpr (requires { Depth::kWrite; })
@@ -618,6 +625,44 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                         return 0u;
                     }
                 };
+                // Blocks x and x + 4 of a row pair inside the tile through one Float8x2 call when both
+                // have live lanes (else each alone); the same bits as shadeBlock on each. Why: a
+                // block's texture fetch is one long dependency chain, and two of them interleaved keep
+                // the core busy where one leaves it waiting (PERFORMANCE.md).
+                [[maybe_unused]] auto shadePair = [&](int32_t x, int32_t y, uint32_t covered0, uint32_t covered1,
+                                                      const Float8 (&row_part)[kN]) {
+                    if constexpr (Depth::kWide && Color::kWide && kPairs) {
+                        uint32_t live[2] = {covered0, covered1};
+                        if constexpr (Depth::kEnabled) {
+                            live[0] &= depth_here.testWide(x, y, z8);
+                            live[1] &= depth_here.testWide(x + 4, y, z8);
+                        }
+                        if (!live[0] || !live[1]) {
+                            if (live[0]) shadeBlock(x, y, covered0, row_part);
+                            if (live[1]) shadeBlock(x + 4, y, covered1, row_part);
+                            return;
+                        }
+                        const Wide<V> half[2] = {inputs(x, row_part), inputs(x + 4, row_part)};
+                        Float8 h0[kN], h1[kN];
+                        std::memcpy(h0, static_cast<const void*>(&half[0]), sizeof h0);
+                        std::memcpy(h1, static_cast<const void*>(&half[1]), sizeof h1);
+                        Float8x2 f[kN];
+                        for (uint32_t k = 0; k < kN; ++k) f[k] = Float8x2(h0[k], h1[k]);
+                        WidePair<V> in;
+                        static_assert(sizeof in == sizeof f);
+                        std::memcpy(static_cast<void*>(&in), f, sizeof f);
+                        const glm::vec<4, Float8x2> c2 = shader_here(in);
+                        blocks += 2;
+                        for (int h = 0; h < 2; ++h) {
+                            const glm::vec<4, Float8> c(c2.x.h[h], c2.y.h[h], c2.z.h[h], c2.w.h[h]);
+                            live_lanes += uint64_t(std::popcount(live[h]));
+                            depth_here.writeWide(x + 4 * h, y, z8, live[h]);
+                            const uint32_t noop = color_here.noOpWide(c) & live[h];
+                            no_ops += uint64_t(std::popcount(noop));
+                            if (live[h] & ~noop) color_here.writeWide(x + 4 * h, y, c, live[h]);
+                        }
+                    }
+                };
                 bool done = false;
                 if constexpr (Depth::kWide && Color::kWide) {
                     // Every 4×2 block of the rectangle inside the tile (always, but at a target or
@@ -637,7 +682,11 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                             const uint32_t rows = (y >= y0 ? 0x0Fu : 0u) | (y + 1 <= y1 ? 0xF0u : 0u);
                             Float8 row_part[kN];
                             rowPart(y, row_part);
-                            for (int k = 0; k < n_blocks; ++k) shadeBlock(bx0 + 4 * k, y, rows & columns[k], row_part);
+                            int k = 0;
+                            if constexpr (kPairs)
+                                for (; k + 1 < n_blocks; k += 2)
+                                    shadePair(bx0 + 4 * k, y, rows & columns[k], rows & columns[k + 1], row_part);
+                            for (; k < n_blocks; ++k) shadeBlock(bx0 + 4 * k, y, rows & columns[k], row_part);
                         }
                         whole_lanes += uint64_t(x1 - x0 + 1) * uint64_t(y1 - y0 + 1);
                         whole_live += live_lanes - live_before;
@@ -804,9 +853,7 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                         depth_here.writeWide(x, y, z, live);
                         passed += uint64_t(std::popcount(live));
                         uint32_t* row = &owner[y - rect.y0][x - rect.x0];
-                        simd::I32x8 ids;
-                        std::memcpy(&ids, row, 16);
-                        std::memcpy(reinterpret_cast<char*>(&ids) + 16, row + kTileSize, 16);
+                        simd::I32x8 ids = detail::loadRows<Int8>(row, row + kTileSize).v;
                         ids = select(Mask8::fromBits(live), Int8(int32_t(n)), Int8(ids)).v;
                         std::memcpy(row, &ids, 16);
                         std::memcpy(row + kTileSize, reinterpret_cast<const char*>(&ids) + 16, 16);
@@ -830,9 +877,7 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                 for (int32_t y = rect.y0; y <= rect.y1; y += 2) {
                     for (int32_t x = rect.x0; x <= rect.x1; x += 4) {
                         const uint32_t* row = &owner[y - rect.y0][x - rect.x0];
-                        simd::I32x8 ids;
-                        std::memcpy(&ids, row, 16);
-                        std::memcpy(reinterpret_cast<char*>(&ids) + 16, row + kTileSize, 16);
+                        const simd::I32x8 ids = detail::loadRows<Int8>(row, row + kTileSize).v;
                         uint32_t pending = ~Mask8{ids == -1}.bits() & 0xFFu;
                         while (pending) {
                             const uint32_t n = uint32_t(ids[std::countr_zero(pending)]);

@@ -196,11 +196,11 @@ struct PixelShaderTraits<PS> {
     using Output = decltype(std::declval<const PS&>()(std::declval<const Input&>()));
 };
 
-template <class V>
+template <class V, class Lanes>
 struct WideOf {};
-template <template <class> class S>
-struct WideOf<S<float>> {
-    using type = S<Float8>;
+template <template <class> class S, class Lanes>
+struct WideOf<S<float>, Lanes> {
+    using type = S<Lanes>;
 };
 }  // namespace detail
 
@@ -213,7 +213,10 @@ using PixelShaderOutput = typename detail::PixelShaderTraits<PS>::Output;
 // for `template <class T> struct Corner { glm::vec<4, T> position; glm::vec<2, T> tex; }`,
 // Wide<Corner<float>> is Corner<Float8>, one Float8 per float, in the same order.
 template <class V>
-using Wide = typename detail::WideOf<V>::type;
+using Wide = typename detail::WideOf<V, Float8>::type;
+// The same struct over Float8x2: two neighbouring 4×2 blocks (simd.hpp).
+template <class V>
+using WidePair = typename detail::WideOf<V, Float8x2>::type;
 
 // A pixel shader that can also shade eight pixels at once (see simd.hpp).
 template <class PS>
@@ -221,6 +224,16 @@ concept WidePixelShader = requires { typename Wide<PixelShaderInput<PS>>; } &&
                           sizeof(Wide<PixelShaderInput<PS>>) == kVertexFloats<PixelShaderInput<PS>> * sizeof(Float8) &&
                           requires(const PS& ps, const Wide<PixelShaderInput<PS>>& in) {
                               { ps(in) } -> std::same_as<glm::vec<4, Float8>>;
+                          };
+
+// An eight-wide pixel shader that also shades two blocks in one call, over Float8x2. Every shader
+// written over its scalar type is one: Float8x2 offers what Float8 offers.
+template <class PS>
+concept PairPixelShader = WidePixelShader<PS> && requires { typename WidePair<PixelShaderInput<PS>>; } &&
+                          sizeof(WidePair<PixelShaderInput<PS>>) ==
+                              kVertexFloats<PixelShaderInput<PS>> * sizeof(Float8x2) &&
+                          requires(const PS& ps, const WidePair<PixelShaderInput<PS>>& in) {
+                              { ps(in) } -> std::same_as<glm::vec<4, Float8x2>>;
                           };
 
 template <class VS>

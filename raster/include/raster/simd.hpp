@@ -7,6 +7,8 @@
 // so lanes (0,1,4,5) and (2,3,6,7) are the two 2×2 quads derivatives are taken in. Results are the
 // same bits as the scalar path: every operation here is the IEEE operation the scalar code does,
 // lane by lane (a multiply-add is fused only where fma() says so; no approximate reciprocal).
+// Such a shader also compiles for Float8x2 (below), two blocks side by side, which the pipeline
+// uses for billboards.
 //
 // Portable GCC/Clang vector extensions; AVX2 intrinsics where they exist for floor and gathers.
 #pragma once
@@ -210,6 +212,85 @@ inline Float8 fma(Float8 a, Float8 b, Float8 c) {
 #endif
 }
 
+// Two 4×2 blocks side by side, sixteen lanes: a Float8 for each block, and every operation done on
+// the first block, then the second. A shader written over its scalar type also compiles for it,
+// and the pipeline shades two neighbouring blocks of a billboard in one call: the two blocks'
+// dependency chains (a texture fetch is one long chain) then lie interleaved in the instruction
+// stream, so the core works on both at once instead of waiting on one. The same bits as two
+// Float8 calls, lane by lane (tests/simd_test.cpp).
+struct Mask8x2 {
+    Mask8 h[2];
+    friend Mask8x2 operator&(Mask8x2 a, Mask8x2 b) { return {{a.h[0] & b.h[0], a.h[1] & b.h[1]}}; }
+    friend Mask8x2 operator|(Mask8x2 a, Mask8x2 b) { return {{a.h[0] | b.h[0], a.h[1] | b.h[1]}}; }
+    Mask8x2 operator!() const { return {{!h[0], !h[1]}}; }
+    // Bit i set when lane i is true; lanes 8–15 are the second block.
+    uint32_t bits() const { return h[0].bits() | (h[1].bits() << 8); }
+    static Mask8x2 fromBits(uint32_t bits) { return {{Mask8::fromBits(bits & 0xFF), Mask8::fromBits(bits >> 8)}}; }
+};
+
+struct Int8x2 {
+    Int8 h[2];
+    Int8x2() = default;
+    Int8x2(int32_t x) : h{Int8(x), Int8(x)} {}  // NOLINT
+    Int8x2(Int8 a, Int8 b) : h{a, b} {}
+    int32_t operator[](int i) const { return h[i >> 3][i & 7]; }
+    friend Int8x2 operator+(Int8x2 a, Int8x2 b) { return {a.h[0] + b.h[0], a.h[1] + b.h[1]}; }
+    friend Int8x2 operator-(Int8x2 a, Int8x2 b) { return {a.h[0] - b.h[0], a.h[1] - b.h[1]}; }
+    friend Int8x2 operator*(Int8x2 a, Int8x2 b) { return {a.h[0] * b.h[0], a.h[1] * b.h[1]}; }
+    friend Int8x2 operator&(Int8x2 a, Int8x2 b) { return {a.h[0] & b.h[0], a.h[1] & b.h[1]}; }
+    friend Int8x2 operator|(Int8x2 a, Int8x2 b) { return {a.h[0] | b.h[0], a.h[1] | b.h[1]}; }
+    friend Int8x2 operator<<(Int8x2 a, int s) { return {a.h[0] << s, a.h[1] << s}; }
+    friend Int8x2 operator>>(Int8x2 a, int s) { return {a.h[0] >> s, a.h[1] >> s}; }  // logical, as Int8
+    friend Mask8x2 operator<(Int8x2 a, Int8x2 b) { return {{a.h[0] < b.h[0], a.h[1] < b.h[1]}}; }
+    friend Mask8x2 operator>(Int8x2 a, Int8x2 b) { return {{a.h[0] > b.h[0], a.h[1] > b.h[1]}}; }
+};
+
+struct Float8x2 {
+    Float8 h[2];
+    Float8x2() = default;
+    Float8x2(float x) : h{Float8(x), Float8(x)} {}  // NOLINT: a broadcast, as Float8's
+    Float8x2(Float8 a, Float8 b) : h{a, b} {}
+    static Float8x2 load(const float* p) { return {Float8::load(p), Float8::load(p + 8)}; }
+    void store(float* p) const { h[0].store(p), h[1].store(p + 8); }
+    float operator[](int i) const { return h[i >> 3][i & 7]; }
+    friend Float8x2 operator+(Float8x2 a, Float8x2 b) { return {a.h[0] + b.h[0], a.h[1] + b.h[1]}; }
+    friend Float8x2 operator-(Float8x2 a, Float8x2 b) { return {a.h[0] - b.h[0], a.h[1] - b.h[1]}; }
+    friend Float8x2 operator*(Float8x2 a, Float8x2 b) { return {a.h[0] * b.h[0], a.h[1] * b.h[1]}; }
+    friend Float8x2 operator/(Float8x2 a, Float8x2 b) { return {a.h[0] / b.h[0], a.h[1] / b.h[1]}; }
+    Float8x2 operator-() const { return {-h[0], -h[1]}; }
+    Float8x2& operator+=(Float8x2 b) { return *this = *this + b; }
+    Float8x2& operator-=(Float8x2 b) { return *this = *this - b; }
+    Float8x2& operator*=(Float8x2 b) { return *this = *this * b; }
+    Float8x2& operator/=(Float8x2 b) { return *this = *this / b; }
+    friend Mask8x2 operator<(Float8x2 a, Float8x2 b) { return {{a.h[0] < b.h[0], a.h[1] < b.h[1]}}; }
+    friend Mask8x2 operator<=(Float8x2 a, Float8x2 b) { return {{a.h[0] <= b.h[0], a.h[1] <= b.h[1]}}; }
+    friend Mask8x2 operator>(Float8x2 a, Float8x2 b) { return {{a.h[0] > b.h[0], a.h[1] > b.h[1]}}; }
+    friend Mask8x2 operator>=(Float8x2 a, Float8x2 b) { return {{a.h[0] >= b.h[0], a.h[1] >= b.h[1]}}; }
+    friend Mask8x2 operator==(Float8x2 a, Float8x2 b) { return {{a.h[0] == b.h[0], a.h[1] == b.h[1]}}; }
+    friend Mask8x2 operator!=(Float8x2 a, Float8x2 b) { return {{a.h[0] != b.h[0], a.h[1] != b.h[1]}}; }
+};
+
+inline Float8x2 select(Mask8x2 m, Float8x2 a, Float8x2 b) {
+    return {select(m.h[0], a.h[0], b.h[0]), select(m.h[1], a.h[1], b.h[1])};
+}
+inline Int8x2 select(Mask8x2 m, Int8x2 a, Int8x2 b) {
+    return {select(m.h[0], a.h[0], b.h[0]), select(m.h[1], a.h[1], b.h[1])};
+}
+inline Float8x2 min(Float8x2 a, Float8x2 b) { return {min(a.h[0], b.h[0]), min(a.h[1], b.h[1])}; }
+inline Float8x2 max(Float8x2 a, Float8x2 b) { return {max(a.h[0], b.h[0]), max(a.h[1], b.h[1])}; }
+inline Int8x2 min(Int8x2 a, Int8x2 b) { return {min(a.h[0], b.h[0]), min(a.h[1], b.h[1])}; }
+inline Int8x2 max(Int8x2 a, Int8x2 b) { return {max(a.h[0], b.h[0]), max(a.h[1], b.h[1])}; }
+inline Int8x2 toInt(Float8x2 a) { return {toInt(a.h[0]), toInt(a.h[1])}; }
+inline Float8x2 toFloat(Int8x2 a) { return {toFloat(a.h[0]), toFloat(a.h[1])}; }
+inline Float8x2 floor(Float8x2 a) { return {floor(a.h[0]), floor(a.h[1])}; }
+inline Float8x2 sqrt(Float8x2 a) { return {sqrt(a.h[0]), sqrt(a.h[1])}; }
+inline Float8x2 abs(Float8x2 a) { return {abs(a.h[0]), abs(a.h[1])}; }
+inline Float8x2 fma(Float8x2 a, Float8x2 b, Float8x2 c) {
+    return {fma(a.h[0], b.h[0], c.h[0]), fma(a.h[1], b.h[1], c.h[1])};
+}
+inline Int8x2 gather(const int32_t* base, Int8x2 index) { return {gather(base, index.h[0]), gather(base, index.h[1])}; }
+inline Float8x2 gather(const float* base, Int8x2 index) { return {gather(base, index.h[0]), gather(base, index.h[1])}; }
+
 // exp and expm1 for shaders, over float and Float8 with the same arithmetic (so the scalar and the
 // eight-wide path agree bit for bit): Cody–Waite range reduction x = k·ln2 + r, |r| ≤ ln2/2, a
 // degree-8 Taylor polynomial for e^r − 1 (truncation error < 1e-9 relative), and an exact scaling
@@ -236,6 +317,10 @@ inline float toFloatI(int32_t i) { return float(i); }
 inline Float8 toFloatI(Int8 i) { return toFloat(i); }
 inline int32_t halfOf(int32_t k) { return k >> 1; }  // arithmetic shift: floor(k / 2)
 inline Int8 halfOf(Int8 k) { return simd::I32x8(k.v >> 1); }
+inline Float8x2 bitsToFloat(Int8x2 i) { return {bitsToFloat(i.h[0]), bitsToFloat(i.h[1])}; }
+inline Int8x2 toIntRound(Float8x2 a) { return {toIntRound(a.h[0]), toIntRound(a.h[1])}; }
+inline Float8x2 toFloatI(Int8x2 i) { return toFloat(i); }
+inline Int8x2 halfOf(Int8x2 k) { return {halfOf(k.h[0]), halfOf(k.h[1])}; }
 
 // (k, r, e^r − 1) for x already clamped to [−104, 89].
 template <class T>
@@ -288,6 +373,9 @@ inline float exp(float a) { return inReferenceMode() ? __builtin_expf(a) : fastE
 inline float expm1(float a) { return inReferenceMode() ? __builtin_expm1f(a) : fastExpm1(a); }
 inline Float8 exp(Float8 a) { return fastExp(a); }
 inline Float8 expm1(Float8 a) { return fastExpm1(a); }
+// fastExp and fastExpm1 instantiated for the pair, so the two halves' polynomials interleave too.
+inline Float8x2 exp(Float8x2 a) { return fastExp(a); }
+inline Float8x2 expm1(Float8x2 a) { return fastExpm1(a); }
 
 // Vector helpers over either scalar type (glm's own dot/normalize want arithmetic types).
 template <int N, class T>

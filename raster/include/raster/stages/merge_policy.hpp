@@ -27,12 +27,26 @@ namespace raster {
 // eight single-pixel calls.
 
 namespace detail {
-inline Float8 loadBlock(const float* row0, const float* row1) {
-    Float8 r;
+// A block's two rows of four as one register, loaded as the register's two halves. Not through a
+// copy on the stack: GCC builds that from two 16-byte stores (or four 8-byte ones), and a 32-byte
+// load of them cannot be forwarded, so it waits until the stores retire, i.e. until everything
+// before it in the loop has finished (perf put 8-12 % of the particle loop on that wait).
+template <class Lanes>
+Lanes loadRows(const void* row0, const void* row1) {
+    Lanes r;
+#if defined(__AVX__)
+    const __m128 lo = _mm_loadu_ps(static_cast<const float*>(row0));
+    const __m128 hi = _mm_loadu_ps(static_cast<const float*>(row1));
+    const __m256 both = _mm256_insertf128_ps(_mm256_castps128_ps256(lo), hi, 1);
+    r.v = (decltype(r.v))both;  // the same 32 bytes as another vector type
+#else
     std::memcpy(&r.v, row0, 16);
     std::memcpy(reinterpret_cast<char*>(&r.v) + 16, row1, 16);
+#endif
     return r;
 }
+inline Float8 loadBlock(const float* row0, const float* row1) { return loadRows<Float8>(row0, row1); }
+inline Int8 loadBlock(const uint8_t* row0, const uint8_t* row1) { return loadRows<Int8>(row0, row1); }
 inline void storeBlock(Float8 v, float* row0, float* row1) {
     std::memcpy(row0, &v.v, 16);
     std::memcpy(row1, reinterpret_cast<const char*>(&v.v) + 16, 16);
@@ -146,9 +160,7 @@ struct ColorFast {
     [[gnu::always_inline]] void writeWide(int32_t x, int32_t y, const glm::vec<4, Float8>& c, uint32_t mask) const {
         uint8_t* row0 = pixels + 4 * (size_t(y) * width + x);
         uint8_t* row1 = row0 + 4 * size_t(width);
-        Int8 old;
-        std::memcpy(&old.v, row0, 16);
-        std::memcpy(reinterpret_cast<char*>(&old.v) + 16, row1, 16);
+        const Int8 old = detail::loadBlock(row0, row1);
         Int8 r, g, b, a;
         if constexpr (std::is_same_v<Blender, BlendAdditiveRgba8>) {
             // As BlendAdditiveRgba8::apply, in units of 1/255: the source term s·(255·a) rounded half
