@@ -5,6 +5,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <limits>
 #include <random>
 
@@ -112,12 +113,15 @@ TEST(Float8, WideSampleEqualsScalarSampleBitForBit) {
 
 // Renders the particle scene's particles with the given pixel shader.
 template <class PS>
-RenderTarget renderParticles(const PS& ps, PipelineStatistics* stats, bool reference = false) {
+RenderTarget renderParticles(const PS& ps, PipelineStatistics* stats, bool reference = false,
+                             const std::function<void(DepthTarget&)>& prepareDepth = {}) {
     SceneOptions o;
     o.width = 320, o.height = 180;
     RenderTarget color(o.width, o.height);
     DepthTarget depth(o.width, o.height);
     color.clear({0, 0, 0, 1});
+    depth.clear(1.0f);
+    if (prepareDepth) prepareDepth(depth);
     std::vector<glm::vec3> points(3000);
     for (uint32_t i = 0; i < points.size(); ++i) points[i] = particlePosition(i);
     const VertexBuffer vb = VertexBuffer::create(points);
@@ -171,6 +175,36 @@ TEST(Rectangles, BillboardsAreRecognisedAndWideShadingMatchesScalar) {
     int worst = 0;
     for (size_t i = 0; i < x.size(); ++i) worst = std::max(worst, std::abs(int(x[i]) - int(y[i])));
     EXPECT_LE(worst, 1);
+}
+
+// A read-only depth draw skips the per-block test where a rectangle lies in front of the tile's
+// nearest stored depth. Stored NaN (fails every test) and nearer depths must still refuse their
+// fragments: the image equals the scalar path's, which tests every pixel.
+TEST(Rectangles, InFrontOfTheTileSkipsTheTestButNotItsRefusals) {
+    const Texture2D fire = makeFireTexture();
+    shaders::PsFire wide;
+    wide.billboardTexture = &fire;
+    // Pixels every particle covers at 320×180 (the image's busiest area), one per kind.
+    const uint32_t nan_x = 150, nan_y = 95, near_x = 170, near_y = 85, wall_y = 120;
+    auto prepare = [&](DepthTarget& d) {
+        d.store(nan_x, nan_y, std::nanf(""));
+        d.store(near_x, near_y, 0.0f);
+        for (uint32_t x = 0; x < 320; ++x) d.store(x, wall_y, 0.0f);  // a whole row in front of all
+    };
+    PipelineStatistics wide_stats, scalar_stats;
+    const RenderTarget a = renderParticles(wide, &wide_stats, false, prepare);
+    const RenderTarget b = renderParticles(PsFireScalarOnly{wide}, &scalar_stats, false, prepare);
+    EXPECT_TRUE(a == b);
+    EXPECT_EQ(wide_stats.fragmentsEarlyDepthKilled, scalar_stats.fragmentsEarlyDepthKilled);
+    const RenderTarget open = renderParticles(wide, nullptr);
+    const glm::vec4 cleared(0, 0, 0, 1);
+    for (auto [x, y] : {std::pair{nan_x, nan_y}, std::pair{near_x, near_y}, std::pair{160u, wall_y}}) {
+        EXPECT_EQ(a.load(x, y), cleared) << x << "," << y;
+    }
+    // Without the refusing depths those pixels are drawn (so the test above means something).
+    EXPECT_NE(open.load(nan_x, nan_y), cleared);
+    EXPECT_NE(open.load(near_x, near_y), cleared);
+    EXPECT_NE(open.load(160, wall_y), cleared);
 }
 
 }  // namespace

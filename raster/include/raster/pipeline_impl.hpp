@@ -482,6 +482,21 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
             return false;
         };
 
+        // Whole primitives in front of everything: under a draw that writes no depth, the tile's
+        // nearest stored depth stays put, so a rectangle of one depth in front of it passes the
+        // depth test in every pixel and its blocks need no test.
+        [[maybe_unused]] float tile_near = 0.0f;
+        [[maybe_unused]] bool tile_near_known = false;
+        auto inFrontInTile = [&]([[maybe_unused]] float z) {
+            if constexpr (requires { Depth::kBoundsTile; }) {
+                if constexpr (Depth::kBoundsTile && !Depth::kWrite && !Tracer::kEnabled) {
+                    if (!tile_near_known) tile_near = depth.nearest(rect), tile_near_known = true;
+                    return Depth::passesAll(z, tile_near);
+                }
+            }
+            return false;
+        };
+
         // A depth no fragment of triangle t lies in front of: interpolated depths stay within the
         // vertices' (to double rounding, far below the 2^-20 margin) and are clamped to the viewport.
         auto nearestDepth = [&](const TriangleSetup& t) {
@@ -560,10 +575,13 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
             }
         };
 
-        // A rectangle (billboard) with a shader that runs eight wide: 4×2 blocks, one call each.
+        // A rectangle (billboard) with a shader that runs eight wide: 4×2 blocks, one call each, or
+        // two neighbouring blocks per call where the shader also takes Float8x2 (shadePair).
         // The same arithmetic as the scalar path lane by lane, so the same bits.
+        // in_front: the rectangle passes the depth test in every pixel of the tile (inFrontInTile).
         [[maybe_unused]] auto shadeRectWide = [&](const RectSetup& r, const float* base, const float* step_x,
-                                                  const float* step_y, Real z) __attribute__((flatten)) {
+                                                  const float* step_y, Real z,
+                                                  bool in_front) __attribute__((flatten)) {
             if constexpr (kWide) {
                 constexpr uint32_t kN = kVertexFloats<V>;
                 // What every block reads, in locals: the targets are written through uint8_t and float
@@ -608,7 +626,7 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                     if constexpr (Depth::kWide && Color::kWide) {
                         uint32_t live = covered;
                         if constexpr (Depth::kEnabled) {
-                            live &= depth_here.testWide(x, y, z8);
+                            if (!in_front) live &= depth_here.testWide(x, y, z8);
                             if (!live) return 0u;
                         }
                         const glm::vec<4, Float8> c = shader_here(inputs(x, row_part));
@@ -634,8 +652,10 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                     if constexpr (Depth::kWide && Color::kWide && kPairs) {
                         uint32_t live[2] = {covered0, covered1};
                         if constexpr (Depth::kEnabled) {
-                            live[0] &= depth_here.testWide(x, y, z8);
-                            live[1] &= depth_here.testWide(x + 4, y, z8);
+                            if (!in_front) {
+                                live[0] &= depth_here.testWide(x, y, z8);
+                                live[1] &= depth_here.testWide(x + 4, y, z8);
+                            }
                         }
                         if (!live[0] || !live[1]) {
                             if (live[0]) shadeBlock(x, y, covered0, row_part);
@@ -977,7 +997,7 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                         const Real z = std::clamp(Real(r.z), Real(min_depth), Real(max_depth));
                         if (occludedInTile(float(z))) break;
                         if constexpr (kWide) {
-                            shadeRectWide(r, base, step_x, step_y, z);
+                            shadeRectWide(r, base, step_x, step_y, z, inFrontInTile(float(z)));
                             break;
                         }
                         rasterizeRect(r.box, rect, [&](int32_t qx, int32_t qy, uint32_t mask) {

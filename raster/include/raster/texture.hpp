@@ -480,7 +480,8 @@ template <int N>
     // a byte) is added from the pair's low byte; then the words (2^14 − b, b) for PMADDWD's rows.
     __m256i wa[N], wb[N];
     for (int n = 0; n < N; ++n) {
-        const __m256i wa8 = _mm256_min_epi32(_mm256_cvtps_epi32(__m256((alpha[n] * Float8(detail::kFootprintAlphaScale)).v)),
+        const Float8 a256 = alpha[n] * Float8(detail::kFootprintAlphaScale);
+        const __m256i wa8 = _mm256_min_epi32(_mm256_cvtps_epi32(__m256(a256.v)),
                                              _mm256_set1_epi32(detail::kFootprintAlphaMax));
         const __m256i wa16 = _mm256_or_si256(_mm256_slli_epi32(wa8, 8), _mm256_xor_si256(wa8, _mm256_set1_epi32(255)));
         wa[n] = _mm256_or_si256(wa16, _mm256_slli_epi32(wa16, 16));

@@ -105,6 +105,32 @@ struct DepthFixed {
     // Per-tile occlusion: under Less and LessEqual a depth write only lowers the stored value, so
     // the farthest stored depth of a tile, taken once per draw, bounds the tile for the whole draw.
     static constexpr bool kBoundsTile = F == ComparisonFunc::Less || F == ComparisonFunc::LessEqual;
+    // The nearest stored depth in rect; −∞ if any entry is NaN (a NaN fails every test, so no
+    // fragment passes everywhere there).
+    float nearest(const PixelRect& rect) const {
+        Float8 m(std::numeric_limits<float>::infinity());
+        Mask8 nan{simd::I32x8{}};
+        float tail = std::numeric_limits<float>::infinity();
+        bool tail_nan = false;
+        for (int32_t y = rect.y0; y <= rect.y1; ++y) {
+            const float* row = depth + size_t(y) * width;
+            int32_t x = rect.x0;
+            for (; x + 7 <= rect.x1; x += 8) {
+                const Float8 d = Float8::load(row + x);
+                m = select(d < m, d, m);
+                nan = nan | (d != d);
+            }
+            for (; x <= rect.x1; ++x) tail = row[x] < tail ? row[x] : tail, tail_nan |= row[x] != row[x];
+        }
+        if (nan.bits() != 0 || tail_nan) return -std::numeric_limits<float>::infinity();
+        for (int l = 0; l < 8; ++l) tail = m[l] < tail ? m[l] : tail;
+        return tail;
+    }
+    // True when a fragment of depth `farthest` or nearer passes against every stored depth of at
+    // least `nearest`.
+    static bool passesAll(float farthest, float nearest) {
+        return F == ComparisonFunc::Less ? farthest < nearest : farthest <= nearest;
+    }
     // The farthest stored depth in rect (NaN entries, which fail every test, are left out).
     float farthest(const PixelRect& rect) const {
         Float8 m(-std::numeric_limits<float>::infinity());
