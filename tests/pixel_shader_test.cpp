@@ -631,6 +631,31 @@ struct PsVertexColor {
     }
 };
 static_assert(WidePixelShader<PsVertexColor>);
+static_assert(PairPixelShader<PsVertexColor>);
+// The same shader for float and Float8 only: the pipeline shades its triangles one 4×2 block per call.
+struct PsVertexColorEightOnly {
+    using Input = ColorVertexT<float>;
+    PsVertexColor inner;
+    glm::vec4 operator()(const ColorVertexT<float>& in) const { return inner(in); }
+    glm::vec<4, Float8> operator()(const ColorVertexT<Float8>& in) const { return inner(in); }
+};
+static_assert(WidePixelShader<PsVertexColorEightOnly> && !PairPixelShader<PsVertexColorEightOnly>);
+// Colour from the pixel's position, so that any two blocks differ: a pair call that mixed up its
+// halves, or shaded a block at its neighbour's place, shows.
+struct PsPosition {
+    using Input = ColorVertexT<float>;
+    template <class T>
+    glm::vec<4, T> operator()(const ColorVertexT<T>& in) const {
+        return {in.position.x * T(1.0f / 160.0f), in.position.y * T(1.0f / 70.0f), in.color.z * in.position.z, T(1.0f)};
+    }
+};
+struct PsPositionEightOnly {
+    using Input = ColorVertexT<float>;
+    PsPosition inner;
+    glm::vec4 operator()(const ColorVertexT<float>& in) const { return inner(in); }
+    glm::vec<4, Float8> operator()(const ColorVertexT<Float8>& in) const { return inner(in); }
+};
+static_assert(PairPixelShader<PsPosition> && !PairPixelShader<PsPositionEightOnly>);
 
 struct ColorFixture : Fixture {
     std::vector<ColorIn> vertices;
@@ -643,10 +668,11 @@ struct ColorFixture : Fixture {
         for (const glm::vec3& p : quad(x0, y0, x1, y1, float(width), float(height), z)) vertices.push_back({p, c});
     }
     // Draws vertices [first, first + count) in one draw.
-    void drawRange(size_t first, size_t count) {
+    template <class PS = PsVertexColor>
+    void drawRange(size_t first, size_t count, const PS& ps = {}) {
         const std::vector<ColorIn> part(vertices.begin() + long(first), vertices.begin() + long(first + count));
         setVertices(part);
-        ctx.draw(VsColor{}, PsVertexColor{}, uint32_t(count));
+        ctx.draw(VsColor{}, ps, uint32_t(count));
     }
 };
 
@@ -733,6 +759,38 @@ TEST(DeferredShading, RandomTrianglesGiveTheInOrderImage) {
         }
         EXPECT_GE(s.psInvocations, reached);
         EXPECT_GT(shaded_apart, s.psInvocations) << width;
+
+        // Neighbouring blocks of one triangle are shaded two per call (Float8x2) in both the deferred
+        // pass and in-order draws of one triangle; one block per call must give the same image and
+        // the same counts, helper lanes included.
+        ColorFixture one2(width, 70), one8(width, 70), apart2(width, 70), apart8(width, 70);
+        for (ColorFixture* f : {&one2, &one8, &apart2, &apart8}) {
+            f->vertices = one.vertices;
+            f->ctx.setDepthStencilState({true, true, ComparisonFunc::Less});
+        }
+        one2.drawRange(0, one2.vertices.size(), PsPosition{});
+        one8.drawRange(0, one8.vertices.size(), PsPositionEightOnly{});
+        const PipelineStatistics s2 = one2.ctx.drawStatistics(), s8 = one8.ctx.drawStatistics();
+        EXPECT_TRUE(one2.color == one8.color) << width;
+        EXPECT_EQ(s2.psInvocations, s8.psInvocations) << width;
+        EXPECT_EQ(s2.helperInvocations, s8.helperInvocations) << width;
+        EXPECT_EQ(s2.fragmentsOverdrawSkipped, s8.fragmentsOverdrawSkipped) << width;
+        EXPECT_EQ(s2.fragmentsEarlyDepthKilled, s8.fragmentsEarlyDepthKilled) << width;
+        uint64_t shaded_pairs = 0, shaded_apart8 = 0, helpers_pairs = 0, helpers_apart8 = 0;
+        for (size_t i = 0; i < apart8.vertices.size(); i += 3) {
+            apart2.drawRange(i, 3, PsPosition{});
+            shaded_pairs += apart2.ctx.drawStatistics().psInvocations;
+            helpers_pairs += apart2.ctx.drawStatistics().helperInvocations;
+            apart8.drawRange(i, 3, PsPositionEightOnly{});
+            shaded_apart8 += apart8.ctx.drawStatistics().psInvocations;
+            helpers_apart8 += apart8.ctx.drawStatistics().helperInvocations;
+        }
+        EXPECT_TRUE(apart2.color == apart8.color) << width;
+        EXPECT_TRUE(apart2.color == one2.color) << width;
+        EXPECT_EQ(shaded_pairs, shaded_apart) << width;
+        EXPECT_EQ(shaded_apart8, shaded_apart) << width;
+        EXPECT_EQ(helpers_pairs, helpers_apart8) << width;
+        EXPECT_GT(helpers_pairs, 0u) << width;
     }
 }
 

@@ -416,6 +416,25 @@ struct WideShaderCopy {
         return value(in);
     }
 };
+
+// Two neighbouring blocks' inputs as one Float8x2 input, the left block in half 0.
+template <class V>
+[[gnu::always_inline]] inline WidePair<V> zipBlocks(const Wide<V>& left, const Wide<V>& right) {
+    constexpr uint32_t kN = kVertexFloats<V>;
+    Float8 l[kN], r[kN];
+    std::memcpy(l, static_cast<const void*>(&left), sizeof l);
+    std::memcpy(r, static_cast<const void*>(&right), sizeof r);
+    Float8x2 f[kN];
+    for (uint32_t k = 0; k < kN; ++k) f[k] = Float8x2(l[k], r[k]);
+    WidePair<V> out;
+    static_assert(sizeof out == sizeof f);
+    std::memcpy(static_cast<void*>(&out), f, sizeof f);
+    return out;
+}
+// Block h (0 left, 1 right) of a Float8x2 shader's colour.
+inline glm::vec<4, Float8> blockOf(const glm::vec<4, Float8x2>& c, int h) {
+    return {c.x.h[h], c.y.h[h], c.z.h[h], c.w.h[h]};
+}
 }  // namespace detail
 
 template <class PS, class V, class Real, class Tracer, class Depth, class Color>
@@ -662,19 +681,11 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                             if (live[1]) shadeBlock(x + 4, y, covered1, row_part);
                             return;
                         }
-                        const Wide<V> half[2] = {inputs(x, row_part), inputs(x + 4, row_part)};
-                        Float8 h0[kN], h1[kN];
-                        std::memcpy(h0, static_cast<const void*>(&half[0]), sizeof h0);
-                        std::memcpy(h1, static_cast<const void*>(&half[1]), sizeof h1);
-                        Float8x2 f[kN];
-                        for (uint32_t k = 0; k < kN; ++k) f[k] = Float8x2(h0[k], h1[k]);
-                        WidePair<V> in;
-                        static_assert(sizeof in == sizeof f);
-                        std::memcpy(static_cast<void*>(&in), f, sizeof f);
-                        const glm::vec<4, Float8x2> c2 = shader_here(in);
+                        const glm::vec<4, Float8x2> c2 =
+                            shader_here(detail::zipBlocks<V>(inputs(x, row_part), inputs(x + 4, row_part)));
                         blocks += 2;
                         for (int h = 0; h < 2; ++h) {
-                            const glm::vec<4, Float8> c(c2.x.h[h], c2.y.h[h], c2.z.h[h], c2.w.h[h]);
+                            const glm::vec<4, Float8> c = detail::blockOf(c2, h);
                             live_lanes += uint64_t(std::popcount(live[h]));
                             depth_here.writeWide(x + 4 * h, y, z8, live[h]);
                             const uint32_t noop = color_here.noOpWide(c) & live[h];
@@ -753,17 +764,32 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
             }
         };
 
-        // One 4×2 block of a triangle through an eight-wide shader: its attributes interpolated, the
-        // shader run, its invocations (lanes in `live`) and helper lanes counted.
+        // One 4×2 block's inputs through an eight-wide shader, its invocations (lanes in `live`) and
+        // helper lanes counted.
+        [[maybe_unused]] auto shadeInputWide = [&](const auto& shader, const auto& in, uint32_t live) {
+            const glm::vec<4, Float8> c = shader(in);
+            const int n = std::popcount(live);
+            st.psInvocations += uint64_t(n);
+            st.helperInvocations += uint64_t(8 - n);
+            return c;
+        };
+        // One 4×2 block of a triangle through an eight-wide shader: its attributes interpolated, then
+        // shadeInputWide.
         [[maybe_unused]] auto shadeBlockWide = [&](const auto& shader, const TriangleInterpolant<Real>& ti,
                                                    const int64_t (&e)[3][8], const auto& verts, int32_t x, int32_t y,
                                                    Float8 z, uint32_t live) {
             Wide<std::remove_cvref_t<decltype(*verts[0])>> in;
             interpolateAttributesWide(ti, e, verts, x, y, z, in);
-            const glm::vec<4, Float8> c = shader(in);
-            const int n = std::popcount(live);
+            return shadeInputWide(shader, in, live);
+        };
+        // Two such blocks of one triangle, interpolated already, through one Float8x2 call (the same
+        // bits as a call each): two shaders' dependency chains interleaved (see shadeRectWide).
+        [[maybe_unused]] auto shadePairWide = [&](const auto& shader, const auto& left, const auto& right,
+                                                  uint32_t live_left, uint32_t live_right) {
+            const glm::vec<4, Float8x2> c = shader(detail::zipBlocks<V>(left, right));
+            const int n = std::popcount(live_left) + std::popcount(live_right);
             st.psInvocations += uint64_t(n);
-            st.helperInvocations += uint64_t(8 - n);
+            st.helperInvocations += uint64_t(16 - n);
             return c;
         };
 
@@ -778,6 +804,32 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                 const Depth depth_here = depth;
                 const Color color_here = color;
                 const auto shader_here = wide_shader;
+                auto finishBlock = [&](int32_t x, int32_t y, Float8 z, uint32_t live, const glm::vec<4, Float8>& c) {
+                    depth_here.writeWide(x, y, z, live);
+                    const uint32_t noop = color_here.noOpWide(c) & live;
+                    st.fragmentsBlendNoOp += uint64_t(std::popcount(noop));
+                    if (live & ~noop) color_here.writeWide(x, y, c, live & ~noop);
+                };
+                // With a Float8x2 shader an inner block waits, interpolated, for the rasteriser's next
+                // block: if that is its right neighbour, the two are shaded in one call (shadePairWide).
+                // Blocks of one triangle cover distinct pixels, so delaying one's tests and writes past
+                // its neighbour's changes no bit.
+                struct Waiting {
+                    bool held;
+                    int32_t x, y;
+                    uint32_t live;
+                    Float8 z;
+                    Wide<V> in;
+                };
+                [[maybe_unused]] Waiting waiting{};
+                [[maybe_unused]] auto flush = [&] {
+                    if constexpr (kPairs) {
+                        if (!waiting.held) return;
+                        finishBlock(waiting.x, waiting.y, waiting.z, waiting.live,
+                                    shadeInputWide(shader_here, waiting.in, waiting.live));
+                        waiting.held = false;
+                    }
+                };
                 rasterizeTriangleBlocks(t, steps, tile, [&](int32_t x, int32_t y, uint32_t mask, const int64_t (&e)[3][8]) {
                     if (x >= tile.x0 && x + 3 <= tile.x1 && y >= tile.y0 && y + 1 <= tile.y1) {
                         const Float8 z = interpolateDepthWide(t, e, min_depth, max_depth);
@@ -787,11 +839,22 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                             st.fragmentsEarlyDepthKilled += uint64_t(std::popcount(mask & ~live));
                             if (!live) return;
                         }
-                        const glm::vec<4, Float8> c = shadeBlockWide(shader_here, ti, e, verts, x, y, z, live);
-                        depth_here.writeWide(x, y, z, live);
-                        const uint32_t noop = color_here.noOpWide(c) & live;
-                        st.fragmentsBlendNoOp += uint64_t(std::popcount(noop));
-                        if (live & ~noop) color_here.writeWide(x, y, c, live & ~noop);
+                        if constexpr (kPairs) {
+                            Wide<V> in;
+                            interpolateAttributesWide(ti, e, verts, x, y, z, in);
+                            if (waiting.held && waiting.y == y && waiting.x + 4 == x) {
+                                const glm::vec<4, Float8x2> c =
+                                    shadePairWide(shader_here, waiting.in, in, waiting.live, live);
+                                finishBlock(waiting.x, y, waiting.z, waiting.live, detail::blockOf(c, 0));
+                                finishBlock(x, y, z, live, detail::blockOf(c, 1));
+                                waiting.held = false;
+                            } else {
+                                flush();
+                                waiting = Waiting{true, x, y, live, z, in};
+                            }
+                        } else {
+                            finishBlock(x, y, z, live, shadeBlockWide(shader_here, ti, e, verts, x, y, z, live));
+                        }
                         return;
                     }
                     // On the border: the two 2×2 quads of the block, lane by lane.
@@ -820,6 +883,7 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                             });
                     }
                 });
+                flush();
             }
         };
 
@@ -893,33 +957,66 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                 };
                 std::optional<Shown> shown;
                 uint32_t shown_id = ~0u;
+                auto show = [&](uint32_t n) {
+                    if (n == shown_id) return;
+                    const auto [chunk, t] = listed[n];
+                    shown.emplace(Shown{t,
+                                        {&chunk->vertices[t->vertex[0]], &chunk->vertices[t->vertex[1]],
+                                         &chunk->vertices[t->vertex[2]]},
+                                        TriangleInterpolant<Real>(*t),
+                                        BlockLaneOffsets(edgeSteps(*t))});
+                    shown_id = n;
+                };
+                auto edgesAt = [&](int32_t x, int32_t y, int64_t (&e)[3][8]) {
+                    for (int k = 0; k < 3; ++k) {
+                        const int64_t e0 = edgeAt(*shown->t, k, x, y);
+                        const simd::I64x4 top = e0 + shown->lanes.top[k];
+                        const simd::I64x4 bottom = e0 + shown->lanes.bottom[k];
+                        std::memcpy(&e[k][0], &top, sizeof top);
+                        std::memcpy(&e[k][4], &bottom, sizeof bottom);
+                    }
+                };
                 uint64_t shaded = 0;
                 for (int32_t y = rect.y0; y <= rect.y1; y += 2) {
                     for (int32_t x = rect.x0; x <= rect.x1; x += 4) {
                         const uint32_t* row = &owner[y - rect.y0][x - rect.x0];
                         const simd::I32x8 ids = detail::loadRows<Int8>(row, row + kTileSize).v;
                         uint32_t pending = ~Mask8{ids == -1}.bits() & 0xFFu;
+                        if constexpr (kPairs) {
+                            // A block showing one triangle whose right neighbour shows that one only too
+                            // (most blocks inside a triangle): both through one Float8x2 call.
+                            if (pending && x + 4 <= rect.x1) {
+                                const int32_t n = ids[std::countr_zero(pending)];
+                                const uint32_t live_left = Mask8{ids == n}.bits();
+                                const simd::I32x8 next = detail::loadRows<Int8>(row + 4, row + 4 + kTileSize).v;
+                                const uint32_t live_right = Mask8{next == n}.bits();
+                                if (live_left == pending && live_right != 0 &&
+                                    live_right == (~Mask8{next == -1}.bits() & 0xFFu)) {
+                                    show(uint32_t(n));
+                                    Wide<V> in[2];
+                                    for (int h = 0; h < 2; ++h) {
+                                        alignas(32) int64_t e[3][8];
+                                        edgesAt(x + 4 * h, y, e);
+                                        const Float8 z = interpolateDepthWide(*shown->t, e, min_depth, max_depth);
+                                        interpolateAttributesWide(shown->ti, e, shown->verts, x + 4 * h, y, z, in[h]);
+                                    }
+                                    const glm::vec<4, Float8x2> c =
+                                        shadePairWide(shader_here, in[0], in[1], live_left, live_right);
+                                    color_here.writeWide(x, y, detail::blockOf(c, 0), live_left);
+                                    color_here.writeWide(x + 4, y, detail::blockOf(c, 1), live_right);
+                                    shaded += uint64_t(std::popcount(live_left) + std::popcount(live_right));
+                                    x += 4;
+                                    continue;
+                                }
+                            }
+                        }
                         while (pending) {
                             const uint32_t n = uint32_t(ids[std::countr_zero(pending)]);
                             const uint32_t live = Mask8{ids == int32_t(n)}.bits();
                             pending &= ~live;
-                            if (n != shown_id) {
-                                const auto [chunk, t] = listed[n];
-                                shown.emplace(Shown{t,
-                                                    {&chunk->vertices[t->vertex[0]], &chunk->vertices[t->vertex[1]],
-                                                     &chunk->vertices[t->vertex[2]]},
-                                                    TriangleInterpolant<Real>(*t),
-                                                    BlockLaneOffsets(edgeSteps(*t))});
-                                shown_id = n;
-                            }
+                            show(n);
                             alignas(32) int64_t e[3][8];
-                            for (int k = 0; k < 3; ++k) {
-                                const int64_t e0 = edgeAt(*shown->t, k, x, y);
-                                const simd::I64x4 top = e0 + shown->lanes.top[k];
-                                const simd::I64x4 bottom = e0 + shown->lanes.bottom[k];
-                                std::memcpy(&e[k][0], &top, sizeof top);
-                                std::memcpy(&e[k][4], &bottom, sizeof bottom);
-                            }
+                            edgesAt(x, y, e);
                             const Float8 z = interpolateDepthWide(*shown->t, e, min_depth, max_depth);
                             const glm::vec<4, Float8> c =
                                 shadeBlockWide(shader_here, shown->ti, e, shown->verts, x, y, z, live);

@@ -184,6 +184,14 @@ class Texture2D {
         return (grid_.stride != 0) & (sampler.addressU == AddressMode::Clamp) &
                (sampler.addressV == AddressMode::Clamp);
     }
+    // The eight-wide paths' condition for the fixed-point filter: footprintsClamp, a Linear filter
+    // both ways, not reference mode. `&`, not `&&`: GCC merges the four byte tests of `&&` into one
+    // 32-bit load of the sampler, which the pixel loop has just rebuilt on the stack byte by byte,
+    // and that load cannot be forwarded.
+    [[gnu::always_inline]] bool footprintsWide(const SamplerState& sampler) const {
+        const bool bilinear = (sampler.minFilter == Filter::Linear) & (sampler.magFilter == Filter::Linear);
+        return footprintsClamp(sampler) & bilinear && !inReferenceMode();
+    }
     // The fixed-point filter for N blocks at once, each step done for every block before the next.
     template <int N>
     void sampleFootprints(const glm::vec<2, Float8> (&uv)[N], glm::vec<4, Float8> (&out)[N]) const;
@@ -504,11 +512,8 @@ template <int N>
 template <class UV>
     requires std::same_as<UV, glm::vec<2, Float8>>
 [[gnu::always_inline]] inline glm::vec<4, Float8> Texture2D::Sample(const SamplerState& sampler, const UV& uv) const {
-    // The lecture's case first, with as few loads as the tests allow (see FootprintGrid). `&`, not
-    // `&&`: GCC merges the four byte tests of `&&` into one 32-bit load of the sampler, which the
-    // pixel loop has just rebuilt on the stack byte by byte, and that load cannot be forwarded.
-    const bool bilinear = (sampler.minFilter == Filter::Linear) & (sampler.magFilter == Filter::Linear);
-    if (footprintsClamp(sampler) & bilinear && !inReferenceMode()) {
+    // The lecture's case first, with as few loads as the tests allow (see FootprintGrid).
+    if (footprintsWide(sampler)) {
 #if defined(__AVX2__)
         const glm::vec<2, Float8> in[1] = {uv};
         glm::vec<4, Float8> out[1];
@@ -549,8 +554,7 @@ template <class UV>
     const glm::vec<2, Float8> in[2] = {{uv.x.h[0], uv.y.h[0]}, {uv.x.h[1], uv.y.h[1]}};
     glm::vec<4, Float8> out[2];
 #if defined(__AVX2__)
-    const bool bilinear = (sampler.minFilter == Filter::Linear) & (sampler.magFilter == Filter::Linear);
-    if (footprintsClamp(sampler) & bilinear && !inReferenceMode())
+    if (footprintsWide(sampler))
         sampleFootprints<2>(in, out);
     else
 #endif
