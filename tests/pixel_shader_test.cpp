@@ -18,6 +18,8 @@
 #include "raster/shaders/basic.hpp"
 #include "raster/texture.hpp"
 
+#include "eight_only.hpp"
+
 namespace raster {
 namespace {
 
@@ -633,12 +635,7 @@ struct PsVertexColor {
 static_assert(WidePixelShader<PsVertexColor>);
 static_assert(PairPixelShader<PsVertexColor>);
 // The same shader for float and Float8 only: the pipeline shades its triangles one 4×2 block per call.
-struct PsVertexColorEightOnly {
-    using Input = ColorVertexT<float>;
-    PsVertexColor inner;
-    glm::vec4 operator()(const ColorVertexT<float>& in) const { return inner(in); }
-    glm::vec<4, Float8> operator()(const ColorVertexT<Float8>& in) const { return inner(in); }
-};
+using PsVertexColorEightOnly = EightOnly<PsVertexColor>;
 static_assert(WidePixelShader<PsVertexColorEightOnly> && !PairPixelShader<PsVertexColorEightOnly>);
 // Colour from the pixel's position, so that any two blocks differ: a pair call that mixed up its
 // halves, or shaded a block at its neighbour's place, shows.
@@ -649,12 +646,7 @@ struct PsPosition {
         return {in.position.x * T(1.0f / 160.0f), in.position.y * T(1.0f / 70.0f), in.color.z * in.position.z, T(1.0f)};
     }
 };
-struct PsPositionEightOnly {
-    using Input = ColorVertexT<float>;
-    PsPosition inner;
-    glm::vec4 operator()(const ColorVertexT<float>& in) const { return inner(in); }
-    glm::vec<4, Float8> operator()(const ColorVertexT<Float8>& in) const { return inner(in); }
-};
+using PsPositionEightOnly = EightOnly<PsPosition>;
 static_assert(PairPixelShader<PsPosition> && !PairPixelShader<PsPositionEightOnly>);
 
 struct ColorFixture : Fixture {

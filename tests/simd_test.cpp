@@ -16,6 +16,8 @@
 #include "raster/simd.hpp"
 #include "raster/texture.hpp"
 
+#include "eight_only.hpp"
+
 namespace raster {
 namespace {
 
@@ -26,12 +28,7 @@ struct PsFireScalarOnly {
 };
 
 // psFire for float and Float8 only: the pipeline shades its rectangles one 4×2 block per call.
-struct PsFireEightOnly {
-    using Input = shaders::BillboardCorner;
-    shaders::PsFire inner;
-    glm::vec4 operator()(const shaders::BillboardCorner& in) const { return inner(in); }
-    glm::vec<4, Float8> operator()(const Wide<shaders::BillboardCorner>& in) const { return inner(in); }
-};
+using PsFireEightOnly = EightOnly<shaders::PsFire>;
 
 static_assert(WidePixelShader<shaders::PsFire>);
 static_assert(PairPixelShader<shaders::PsFire>);
