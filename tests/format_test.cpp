@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "raster/check.hpp"
@@ -55,6 +56,26 @@ TEST(RenderTarget, ClearStoreLoadConvertByFormat) {
     EXPECT_EQ(fp.load(0, 0), glm::vec4(0.5f, 2.0f, -1.0f, 1.0f));
     fp.store(1, 1, {0.25f, 0, 0, 0});
     EXPECT_EQ(fp.toRgba8()[4 * (3 + 1)], 64);
+}
+
+// Tiles are 64 pixels wide: from a 64-byte aligned start every tile row of RGBA8 colour, RGBA32F
+// colour and D32 depth is whole cache lines, so threads on neighbouring tiles share none.
+TEST(RenderTarget, PixelRowsOfATileAreWholeCacheLines) {
+    auto offset = [](const void* p) { return reinterpret_cast<std::uintptr_t>(p) % 64; };
+    for (uint32_t width : {64u, 1280u, 1920u}) {
+        const RenderTarget unorm(width, 3), fp(width, 3, Format::R32G32B32A32_FLOAT);
+        const DepthTarget depth(width, 3);
+        EXPECT_EQ(offset(unorm.rgba8()), 0u) << width;
+        EXPECT_EQ(offset(fp.rgba32f()), 0u) << width;
+        EXPECT_EQ(offset(depth.data()), 0u) << width;
+        // Row y, tile column t starts at byte (y·width + 64·t)·4 of an RGBA8 target: a multiple of 64
+        // whenever the width is a multiple of 16 pixels, as every width here is.
+        EXPECT_EQ(offset(unorm.rgba8() + 4 * (size_t(2) * width + 64)), 0u) << width;
+    }
+    RenderTarget copy = RenderTarget(100, 7);  // moved and copied storage keeps the alignment
+    const RenderTarget again = copy;
+    EXPECT_EQ(offset(copy.rgba8()), 0u);
+    EXPECT_EQ(offset(again.rgba8()), 0u);
 }
 
 }  // namespace raster

@@ -72,7 +72,7 @@ void RenderTarget::store(uint32_t x, uint32_t y, const glm::vec4& color) {
 }
 
 std::vector<uint8_t> RenderTarget::toRgba8() const {
-    if (format_ == Format::R8G8B8A8_UNORM) return bytes_;
+    if (format_ == Format::R8G8B8A8_UNORM) return {bytes_.begin(), bytes_.end()};
     std::vector<uint8_t> out(floats_.size());
     for (size_t i = 0; i < floats_.size(); ++i) out[i] = floatToUnorm8(floats_[i]);
     return out;

@@ -123,9 +123,10 @@ class RenderProgress {
 
 namespace detail {
 
-// What the rasteriser reads of one chunk of primitives, filled by the geometry stages.
+// What the rasteriser reads of one chunk of primitives, filled by the geometry stages. Aligned to
+// a cache line: neighbouring chunks are filled by different threads at once.
 template <class V>
-struct Chunk {
+struct alignas(64) Chunk {
     std::vector<V> vertices;  // clip-space vertices the setups refer to
     std::vector<TriangleSetup> triangles;
     std::vector<LineSetup> lines;

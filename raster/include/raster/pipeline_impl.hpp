@@ -467,12 +467,16 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
             return false;
     }();
     const float min_depth = plan.viewport.minDepth, max_depth = plan.viewport.maxDepth;
-    std::vector<PipelineStatistics> per_thread(pool_.size());
+    // One cache line or more per thread, so that the counters of two threads never share one.
+    struct alignas(64) ThreadStatistics {
+        PipelineStatistics s;
+    };
+    std::vector<ThreadStatistics> per_thread(pool_.size());
     [[maybe_unused]] std::vector<std::vector<TraceFragment>> traced_tiles(Tracer::kEnabled ? plan.grid.count() : 0);
     RenderProgress* const progress = progress_;
     if (progress) progress->beginTiles(plan.grid.count());
     pool_.parallelFor(plan.grid.count(), [&](uint32_t tile, unsigned thread) {
-        PipelineStatistics& st = per_thread[thread];
+        PipelineStatistics& st = per_thread[thread].s;
         const PixelRect rect = plan.grid.tileRect(tile);
         detail::ReferenceModeGuard reference(std::is_same_v<Real, double>);
         QuadShader<PS> shader(ps);
@@ -1143,7 +1147,7 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
         if constexpr (Tracer::kEnabled) traced_tiles[tile] = std::move(tracer.fragments);
         if (progress) progress->tileFinished();  // per tile, never per pixel: see RenderProgress
     });
-    for (const PipelineStatistics& s : per_thread) stats += s;
+    for (const ThreadStatistics& t : per_thread) stats += t.s;
     if constexpr (Tracer::kEnabled)
         for (const auto& fragments : traced_tiles) trace_->addFragments(fragments);
 }

@@ -2,7 +2,9 @@
 // R32G32B32A32_FLOAT; a depth target is D32_FLOAT. Row 0 is the top row of the picture.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <new>
 #include <span>
 #include <string>
 #include <vector>
@@ -12,6 +14,27 @@
 #include "raster/format.hpp"
 
 namespace raster {
+
+namespace detail {
+// Pixel storage starts on a cache line. Tiles are 64 pixels wide, so a tile's row is 256 bytes of
+// colour (RGBA8) or depth (D32) and, from an aligned start and for a width that is a multiple of 16
+// pixels (every benchmark's), whole cache lines: two threads that render neighbouring tiles then
+// never write the same line. (malloc's 16-byte alignment put every tile edge in a line shared with
+// the neighbour: PERFORMANCE.md, stop 18.)
+template <class T>
+struct CacheLineAllocator {
+    using value_type = T;
+    static constexpr std::align_val_t kAlignment{64};
+    CacheLineAllocator() = default;
+    template <class U>
+    CacheLineAllocator(const CacheLineAllocator<U>&) {}
+    T* allocate(size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), kAlignment)); }
+    void deallocate(T* p, size_t n) { ::operator delete(p, n * sizeof(T), kAlignment); }
+    bool operator==(const CacheLineAllocator&) const = default;
+};
+template <class T>
+using PixelVector = std::vector<T, CacheLineAllocator<T>>;
+}  // namespace detail
 
 class RenderTarget {
 public:
@@ -53,8 +76,8 @@ public:
 private:
     uint32_t width_ = 0, height_ = 0;
     Format format_ = Format::Unknown;
-    std::vector<uint8_t> bytes_;
-    std::vector<float> floats_;
+    detail::PixelVector<uint8_t> bytes_;
+    detail::PixelVector<float> floats_;
 };
 
 class DepthTarget {
@@ -81,7 +104,7 @@ public:
 
 private:
     uint32_t width_ = 0, height_ = 0;
-    std::vector<float> depth_;
+    detail::PixelVector<float> depth_;
 };
 
 }  // namespace raster
