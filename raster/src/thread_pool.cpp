@@ -9,6 +9,7 @@ unsigned ThreadPool::hardwareThreads() {
 
 ThreadPool::ThreadPool(unsigned threads) {
     if (threads == 0) threads = hardwareThreads();
+    ranges_ = std::vector<HomeRange>(threads);
     for (unsigned i = 1; i < threads; ++i) workers_.emplace_back([this, i] { workerLoop(i); });
 }
 
@@ -21,16 +22,49 @@ ThreadPool::~ThreadPool() {
     for (std::thread& t : workers_) t.join();
 }
 
-void ThreadPool::runItems(unsigned thread) {
+bool ThreadPool::takeFront(HomeRange& range, uint32_t& item) {
+    uint64_t v = range.frontBack.load(std::memory_order_relaxed);
     for (;;) {
-        const uint32_t item = next_.fetch_add(1, std::memory_order_relaxed);
-        if (item >= count_) return;
+        const uint32_t front = uint32_t(v), back = uint32_t(v >> 32);
+        if (front >= back) return false;
+        if (range.frontBack.compare_exchange_weak(v, (uint64_t(back) << 32) | (front + 1), std::memory_order_relaxed)) {
+            item = front;
+            return true;
+        }
+    }
+}
+
+bool ThreadPool::takeBack(HomeRange& range, uint32_t& item) {
+    uint64_t v = range.frontBack.load(std::memory_order_relaxed);
+    for (;;) {
+        const uint32_t front = uint32_t(v), back = uint32_t(v >> 32);
+        if (front >= back) return false;
+        if (range.frontBack.compare_exchange_weak(v, (uint64_t(back - 1) << 32) | front, std::memory_order_relaxed)) {
+            item = back - 1;
+            return true;
+        }
+    }
+}
+
+void ThreadPool::runItems(unsigned thread) {
+    const unsigned n = size();
+    unsigned other = 1;  // the next range, counted from this thread's, to take from the back of
+    for (;;) {
+        uint32_t item;
+        bool got = takeFront(ranges_[thread], item);
+        // Ranges only shrink while a call runs, so one found empty stays empty. (Relaxed order is
+        // enough: the job is published, and its results collected, under mutex_.)
+        while (!got && other < n) {
+            got = takeBack(ranges_[(thread + other) % n], item);
+            if (!got) ++other;
+        }
+        if (!got) return;
         try {
             (*job_)(item, thread);
         } catch (...) {
             std::lock_guard lock(mutex_);
             if (!error_) error_ = std::current_exception();
-            next_.store(count_, std::memory_order_relaxed);  // stop handing out more work
+            for (HomeRange& r : ranges_) r.frontBack.store(0, std::memory_order_relaxed);  // hand out no more
         }
     }
 }
@@ -61,8 +95,11 @@ void ThreadPool::parallelFor(uint32_t count, const std::function<void(uint32_t, 
     {
         std::lock_guard lock(mutex_);
         job_ = &fn;
-        count_ = count;
-        next_.store(0, std::memory_order_relaxed);
+        const unsigned n = size();
+        for (unsigned t = 0; t < n; ++t) {
+            const uint64_t front = uint64_t(count) * t / n, back = uint64_t(count) * (t + 1) / n;
+            ranges_[t].frontBack.store((back << 32) | front, std::memory_order_relaxed);
+        }
         busy_ = unsigned(workers_.size());
         error_ = nullptr;
         ++generation_;
