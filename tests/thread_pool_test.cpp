@@ -35,7 +35,8 @@ TEST(ThreadPool, EveryItemRunsOnceOnAThreadOfThePool) {
                 runs[item].fetch_add(1);
                 if (thread >= threads) bad_thread.fetch_add(1);
             });
-            for (uint32_t i = 0; i < count; ++i) EXPECT_EQ(runs[i].load(), 1u) << threads << " threads, item " << i;
+            for (uint32_t i = 0; i < count; ++i)
+                EXPECT_EQ(runs[i].load(), 1u) << threads << " threads, item " << i;
             EXPECT_EQ(bad_thread.load(), 0u);
         }
     }

@@ -27,7 +27,8 @@ bool ThreadPool::takeFront(HomeRange& range, uint32_t& item) {
     for (;;) {
         const uint32_t front = uint32_t(v), back = uint32_t(v >> 32);
         if (front >= back) return false;
-        if (range.frontBack.compare_exchange_weak(v, (uint64_t(back) << 32) | (front + 1), std::memory_order_relaxed)) {
+        if (range.frontBack.compare_exchange_weak(v, (uint64_t(back) << 32) | (front + 1),
+                                                  std::memory_order_relaxed)) {
             item = front;
             return true;
         }
@@ -39,7 +40,8 @@ bool ThreadPool::takeBack(HomeRange& range, uint32_t& item) {
     for (;;) {
         const uint32_t front = uint32_t(v), back = uint32_t(v >> 32);
         if (front >= back) return false;
-        if (range.frontBack.compare_exchange_weak(v, (uint64_t(back - 1) << 32) | front, std::memory_order_relaxed)) {
+        if (range.frontBack.compare_exchange_weak(v, (uint64_t(back - 1) << 32) | front,
+                                                  std::memory_order_relaxed)) {
             item = back - 1;
             return true;
         }
