@@ -83,6 +83,31 @@ TEST(ThreadPool, AnotherThreadTakesTheItemsOfABlockedThread) {
     }
 }
 
+// Calls a few µs apart, as a frame makes them: the workers poll for the next call before they
+// sleep, and no call may be missed or run twice whether it arrives while they poll or sleep.
+TEST(ThreadPool, CallsInQuickSuccessionEachRunEveryItemOnce) {
+    ThreadPool pool(3);
+    std::atomic<uint64_t> sum{0};
+    uint64_t expected = 0;
+    for (uint32_t call = 0; call < 5000; ++call) {
+        const uint32_t count = 2 + call % 5;
+        pool.parallelFor(count, [&](uint32_t item, unsigned) { sum.fetch_add(uint64_t(call) * 8 + item); });
+        for (uint32_t item = 0; item < count; ++item) expected += uint64_t(call) * 8 + item;
+        ASSERT_EQ(sum.load(), expected) << "call " << call;
+        if (call % 1000 == 999) std::this_thread::sleep_for(std::chrono::milliseconds(2));  // let them sleep
+    }
+}
+
+// A pool destroyed right after a call, while its workers still poll, stops without hanging.
+TEST(ThreadPool, DestroyedWhileItsWorkersPollItStops) {
+    for (int i = 0; i < 50; ++i) {
+        ThreadPool pool(2);
+        std::atomic<uint32_t> ran{0};
+        pool.parallelFor(4, [&](uint32_t, unsigned) { ran.fetch_add(1); });
+        EXPECT_EQ(ran.load(), 4u);
+    }
+}
+
 TEST(ThreadPool, AnErrorComesBackAndThePoolStaysUsable) {
     ThreadPool pool(2);
     std::atomic<uint32_t> ran{0};

@@ -60,8 +60,9 @@ private:
     std::condition_variable wake_, done_;
     const std::function<void(uint32_t, unsigned)>* job_ = nullptr;
     std::vector<HomeRange> ranges_;  // one per thread, index 0 the calling thread's
-    unsigned busy_ = 0;
-    uint64_t generation_ = 0;
+    // Written under mutex_; atomic so that a thread may spin on them without it (spinBriefly).
+    std::atomic<unsigned> busy_{0};
+    std::atomic<uint64_t> generation_{0};
     bool stop_ = false;
     std::exception_ptr error_;
 };
