@@ -642,6 +642,20 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                     std::memcpy(static_cast<void*>(&in), f, sizeof f);
                     return in;
                 };
+                // A shaded block's live lanes into depth and colour, counted (targets with an
+                // eight-wide merge only).
+                [[maybe_unused]] auto mergeBlock = [&](int32_t x, int32_t y, const glm::vec<4, Float8>& c,
+                                                       uint32_t live) {
+                    if constexpr (Depth::kWide && Color::kWide) {
+                        live_lanes += uint64_t(std::popcount(live));
+                        depth_here.writeWide(x, y, z8, live);
+                        const uint32_t noop = color_here.noOpWide(c) & live;
+                        no_ops += uint64_t(std::popcount(noop));
+                        // No-op lanes may be written too (they add zero), so that a block wholly inside
+                        // the rectangle is stored without a lane select.
+                        if (live & ~noop) color_here.writeWide(x, y, c, live);
+                    }
+                };
                 // One block inside the tile through depth, shader and blend at once, its lanes outside
                 // the rectangle (not in `covered`) masked off; returns the lanes shaded.
                 [[maybe_unused]] auto shadeBlock = [&](int32_t x, int32_t y, uint32_t covered,
@@ -652,15 +666,8 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                             if (!in_front) live &= depth_here.testWide(x, y, z8);
                             if (!live) return 0u;
                         }
-                        const glm::vec<4, Float8> c = shader_here(inputs(x, row_part));
                         ++blocks;
-                        live_lanes += uint64_t(std::popcount(live));
-                        depth_here.writeWide(x, y, z8, live);
-                        const uint32_t noop = color_here.noOpWide(c) & live;
-                        no_ops += uint64_t(std::popcount(noop));
-                        // No-op lanes may be written too (they add zero), so that a block wholly inside
-                        // the rectangle is stored without a lane select.
-                        if (live & ~noop) color_here.writeWide(x, y, c, live);
+                        mergeBlock(x, y, shader_here(inputs(x, row_part)), live);
                         return live;
                     } else {
                         return 0u;
@@ -688,14 +695,7 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                         const glm::vec<4, Float8x2> c2 =
                             shader_here(detail::zipBlocks<V>(inputs(x, row_part), inputs(x + 4, row_part)));
                         blocks += 2;
-                        for (int h = 0; h < 2; ++h) {
-                            const glm::vec<4, Float8> c = detail::blockOf(c2, h);
-                            live_lanes += uint64_t(std::popcount(live[h]));
-                            depth_here.writeWide(x + 4 * h, y, z8, live[h]);
-                            const uint32_t noop = color_here.noOpWide(c) & live[h];
-                            no_ops += uint64_t(std::popcount(noop));
-                            if (live[h] & ~noop) color_here.writeWide(x + 4 * h, y, c, live[h]);
-                        }
+                        for (int h = 0; h < 2; ++h) mergeBlock(x + 4 * h, y, detail::blockOf(c2, h), live[h]);
                     }
                 };
                 bool done = false;
