@@ -34,7 +34,8 @@ struct PipelineStatistics {
     uint64_t fragmentsEarlyDepthKilled = 0;  // failed the depth test before the pixel shader ran
     uint64_t fragmentsLateDepthKilled = 0;   // failed the depth test after it (reference mode only)
     uint64_t fragmentsDiscarded = 0;      // the pixel shader returned std::nullopt
-    uint64_t fragmentsBlendNoOp = 0;      // blend could not change the pixel: not written
+    uint64_t fragmentsBlendNoOp = 0;      // blend could not change the pixel (the eight-wide merge
+                                          // may store it unchanged with its block's other pixels)
     uint64_t fragmentsOverdrawSkipped = 0;  // passed the depth test, but a later fragment of the same
                                           // opaque draw replaced them before they were shaded: never
                                           // shaded (deferred shading, see Context::renderTiles)
