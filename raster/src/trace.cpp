@@ -78,7 +78,10 @@ std::string vec(const glm::vec4& v) {
 std::string num(float v) { return std::isfinite(v) ? fmt("%.9g", v) : "null"; }
 std::string jvec(const glm::vec4& v) {
     if (std::isnan(v.x) && std::isnan(v.y) && std::isnan(v.z) && std::isnan(v.w)) return "null";
-    return "[" + num(v.x) + "," + num(v.y) + "," + num(v.z) + "," + num(v.w) + "]";
+    // Appended, not `"[" + …`: GCC 12 warns falsely (-Wrestrict) on a literal + std::string.
+    std::string s = "[";
+    s += num(v.x), s += ",", s += num(v.y), s += ",", s += num(v.z), s += ",", s += num(v.w), s += "]";
+    return s;
 }
 
 std::string blendEquation(const RenderTargetBlendDesc& d) {
@@ -172,7 +175,10 @@ std::string formatDraw(const TraceDraw& d, size_t limit) {
     out << ", PS " << d.pixelShader << (d.skipped ? "  (skipped by the step limit)" : "") << "\n";
     auto floats = [](const std::vector<float>& v, uint32_t from, uint32_t count) {
         std::string s = "(";
-        for (uint32_t i = 0; i < count && from + i < v.size(); ++i) s += (i ? " " : "") + fmt("%.4g", v[from + i]);
+        for (uint32_t i = 0; i < count && from + i < v.size(); ++i) {
+            if (i) s += " ";
+            s += fmt("%.4g", v[from + i]);
+        }
         return s + ")";
     };
     out << "input assembler → vertex shader: " << d.verticesTotal << " invocations\n";
