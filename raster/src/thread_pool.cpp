@@ -28,30 +28,30 @@ ThreadPool::~ThreadPool() {
     for (std::thread& t : workers_) t.join();
 }
 
-bool ThreadPool::takeFront(HomeRange& range, uint32_t& item) {
-    uint64_t v = range.frontBack.load(std::memory_order_relaxed);
+namespace {
+// One item from a home range word (front in the low 32 bits, back in the high 32): the front one,
+// or the back one, with one compare-and-swap; false when the range is empty.
+bool takeItem(std::atomic<uint64_t>& front_back, bool from_back, uint32_t& item) {
+    uint64_t v = front_back.load(std::memory_order_relaxed);
     for (;;) {
         const uint32_t front = uint32_t(v), back = uint32_t(v >> 32);
         if (front >= back) return false;
-        if (range.frontBack.compare_exchange_weak(v, (uint64_t(back) << 32) | (front + 1),
-                                                  std::memory_order_relaxed)) {
-            item = front;
+        const uint64_t next =
+            from_back ? (uint64_t(back - 1) << 32) | front : (uint64_t(back) << 32) | (front + 1);
+        if (front_back.compare_exchange_weak(v, next, std::memory_order_relaxed)) {
+            item = from_back ? back - 1 : front;
             return true;
         }
     }
 }
+}  // namespace
+
+bool ThreadPool::takeFront(HomeRange& range, uint32_t& item) {
+    return takeItem(range.frontBack, false, item);
+}
 
 bool ThreadPool::takeBack(HomeRange& range, uint32_t& item) {
-    uint64_t v = range.frontBack.load(std::memory_order_relaxed);
-    for (;;) {
-        const uint32_t front = uint32_t(v), back = uint32_t(v >> 32);
-        if (front >= back) return false;
-        if (range.frontBack.compare_exchange_weak(v, (uint64_t(back - 1) << 32) | front,
-                                                  std::memory_order_relaxed)) {
-            item = back - 1;
-            return true;
-        }
-    }
+    return takeItem(range.frontBack, true, item);
 }
 
 void ThreadPool::runItems(unsigned thread) {

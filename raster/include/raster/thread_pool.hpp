@@ -6,7 +6,7 @@
 // Why home ranges: successive calls over the same items (the clears, then each draw's tiles, frame
 // after frame) then run mostly on the same core, so a tile's pixels stay in that core's caches
 // instead of moving between cores with every call (PERFORMANCE.md, stop 18: particles on two
-// threads 12.4 -> 10.5 ms a frame). Taking from the back keeps the threads busy when the ranges
+// threads 14.47 -> 12.34 ms a frame). Taking from the back keeps the threads busy when the ranges
 // cost different amounts.
 //
 // Which thread runs an item still varies from run to run, so the pipeline only ever parallelises
