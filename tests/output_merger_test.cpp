@@ -540,6 +540,52 @@ TEST(FastBlender, AdditiveNoOpLeavesEveryDestinationUnchanged) {
     EXPECT_EQ((Bytes{pixel[0], pixel[1], pixel[2], pixel[3]}), (Bytes{61, 10, 255, 255}));
 }
 
+// The additive blend's ceiling: a pixel with every byte at 255 is one no source can change (NaN, ±∞,
+// negatives and values above 1 included), and atCeiling finds exactly the blocks made of such pixels:
+// one byte of one pixel below 255 anywhere in the block is enough to say no, and pixels outside the
+// block do not count.
+TEST(FastBlender, AdditiveCeilingIsEveryByte255AndNoSourceLeavesIt) {
+    static_assert(ColorFast<BlendAdditiveRgba8>::kCeiling && !ColorFast<BlendReplaceRgba8>::kCeiling);
+    const std::vector<float> grid = sourceGrid();
+    const size_t g = grid.size();
+    std::vector<uint8_t> pixels(12 * 2 * 4, 255);  // three 4×2 blocks side by side
+    const ColorFast<BlendAdditiveRgba8> color{pixels.data(), 12};
+    for (size_t i = 0; i < g; ++i) {
+        for (size_t j = 0; j < g; ++j) {
+            const glm::vec4 src(grid[i], grid[(i + 5) % g], grid[(j + 2) % g], grid[j]);
+            uint8_t one[4] = {255, 255, 255, 255};
+            BlendAdditiveRgba8::apply(one, src);
+            ASSERT_EQ((Bytes{one[0], one[1], one[2], one[3]}), (Bytes{255, 255, 255, 255})) << i << ", " << j;
+            color.writeWide(4, 0,
+                            glm::vec<4, Float8>(Float8(src.x), Float8(src.y), Float8(src.z), Float8(src.w)),
+                            uint32_t(i * 7 + j) & 0xFFu);
+            ASSERT_TRUE(std::all_of(pixels.begin(), pixels.end(), [](uint8_t b) { return b == 255; }))
+                << i << ", " << j;
+        }
+    }
+    EXPECT_TRUE(color.atCeiling<1>(0, 0) && color.atCeiling<1>(4, 0) && color.atCeiling<1>(8, 0));
+    EXPECT_TRUE(color.atCeiling<2>(0, 0) && color.atCeiling<2>(4, 0));
+    int refused_one = 0, refused_two = 0;
+    for (size_t b = 0; b < pixels.size(); ++b) {
+        const int x = int(b / 4 % 12);
+        pixels[b] = 254;
+        // The block (one or two wide) at x0 holds this byte exactly when x0 <= x < x0 + its width.
+        for (const int x0 : {0, 4, 8}) {
+            const bool inside = x >= x0 && x < x0 + 4;
+            EXPECT_EQ(color.atCeiling<1>(x0, 0), !inside) << "byte " << b << " block " << x0;
+            refused_one += inside;
+        }
+        for (const int x0 : {0, 4}) {
+            const bool inside = x >= x0 && x < x0 + 8;
+            EXPECT_EQ(color.atCeiling<2>(x0, 0), !inside) << "byte " << b << " pair " << x0;
+            refused_two += inside;
+        }
+        pixels[b] = 255;
+    }
+    EXPECT_EQ(refused_one, 96);   // every byte is in one block
+    EXPECT_EQ(refused_two, 128);  // the middle block's 32 bytes are in both pairs
+}
+
 // ---- States: presets, names, validation --------------------------------------------------------------
 
 TEST(States, DefaultsAndPresetsAreD3D11s) {

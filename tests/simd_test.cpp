@@ -108,10 +108,28 @@ TEST(Float8, WideSampleEqualsScalarSampleBitForBit) {
     }
 }
 
+// gsBillboard with its corners turned by 30° on the screen: not a rectangle, so two triangles.
+struct GsTilted : shaders::GsBillboard {
+    void operator()(const Point<shaders::BillboardVertex>& in,
+                    TriangleStream<shaders::BillboardCorner, 4>& stream) const {
+        const glm::vec4 c = viewProj * in[0].position;
+        const float cs = std::cos(0.5236f), sn = std::sin(0.5236f);
+        auto corner = [&](float ox, float oy, glm::vec2 uv) {
+            const glm::vec2 o((ox * cs - oy * sn) * billboardSize.x, (ox * sn + oy * cs) * billboardSize.y);
+            return shaders::BillboardCorner{c + glm::vec4(o, 0, 0), uv};
+        };
+        stream.Append(corner(1, 1, {1, 0}));
+        stream.Append(corner(1, -1, {1, 1}));
+        stream.Append(corner(-1, 1, {0, 0}));
+        stream.Append(corner(-1, -1, {0, 1}));
+    }
+};
+
 // Renders the particle scene's particles with the given pixel shader.
 template <class PS>
 RenderTarget renderParticles(const PS& ps, PipelineStatistics* stats, bool reference = false,
-                             const std::function<void(DepthTarget&)>& prepareDepth = {}) {
+                             const std::function<void(DepthTarget&)>& prepareDepth = {}, unsigned threads = 2,
+                             bool tilted = false) {
     SceneOptions o;
     o.width = 320, o.height = 180;
     RenderTarget color(o.width, o.height);
@@ -124,7 +142,7 @@ RenderTarget renderParticles(const PS& ps, PipelineStatistics* stats, bool refer
     const VertexBuffer vb = VertexBuffer::create(points);
     const InputElementDesc desc[] = {{"POSITION", 0, Format::R32G32B32_FLOAT, 0, 0}};
     const InputLayout layout(desc);
-    Context ctx({2, reference});
+    Context ctx({threads, reference});
     ctx.setRenderTargets(&color, &depth);
     ctx.setViewport({0, 0, float(o.width), float(o.height), 0, 1});
     RasterizerState rs;
@@ -139,7 +157,10 @@ RenderTarget renderParticles(const PS& ps, PipelineStatistics* stats, bool refer
     const glm::mat4 proj = glm::perspectiveRH_ZO(glm::radians(60.0f), 320.0f / 180.0f, 0.1f, 100.0f);
     gs.viewProj = proj * glm::lookAtRH(glm::vec3(0, 0.3f, 4), glm::vec3(0), glm::vec3(0, 1, 0));
     gs.billboardSize = {0.08f * proj[0][0], 0.08f * proj[1][1]};
-    ctx.draw(shaders::VsBillboard{}, gs, ps, uint32_t(points.size()));
+    if (tilted)
+        ctx.draw(shaders::VsBillboard{}, GsTilted{gs}, ps, uint32_t(points.size()));
+    else
+        ctx.draw(shaders::VsBillboard{}, gs, ps, uint32_t(points.size()));
     if (stats) *stats = ctx.drawStatistics();
     return color;
 }
@@ -172,6 +193,59 @@ TEST(Rectangles, BillboardsAreRecognisedAndWideShadingMatchesScalar) {
     int worst = 0;
     for (size_t i = 0; i < x.size(); ++i) worst = std::max(worst, std::abs(int(x[i]) - int(y[i])));
     EXPECT_LE(worst, 1);
+}
+
+// The eight-wide paths do not shade a block whose pixels are all at the additive blend's ceiling
+// (every byte 255), which no fragment can change. White texels at alpha 1 add 255 to every byte, so
+// one layer takes a pixel there. What the paths skip and shade must add up to what the scalar path
+// (and the reference, less its late depth kills) shades, with the reference's image, for rectangles and for
+// triangles (tilted billboards), one or two blocks per call, on any thread count. A row of depth 0 checks
+// that depth kills are not counted as skips.
+TEST(Rectangles, BlocksAtTheAdditiveCeilingAreCountedNotShaded) {
+    const std::vector<uint8_t> texels(4 * 4 * 4, 255);
+    const Texture2D white = Texture2D::fromRgba8(4, 4, texels, false);
+    shaders::PsFire ps;
+    ps.billboardTexture = &white;
+    auto wall = [](DepthTarget& d) {
+        for (uint32_t x = 0; x < 320; ++x) d.store(x, 91, 0.0f);
+    };
+    for (const bool tilted : {false, true}) {
+        PipelineStatistics ref_stats, scalar_stats;
+        const RenderTarget ref = renderParticles(ps, &ref_stats, true, wall, 2, tilted);
+        const RenderTarget scalar =
+            renderParticles(PsFireScalarOnly{ps}, &scalar_stats, false, wall, 2, tilted);
+        EXPECT_TRUE(scalar == ref) << tilted;
+        EXPECT_EQ(ref_stats.rectanglesRecognized, 0u);
+        EXPECT_EQ(scalar_stats.fragmentsBlendSaturated, 0u)
+            << "one pixel at a time, every fragment is shaded";
+        // The reference tests depth after the shader.
+        EXPECT_EQ(scalar_stats.psInvocations, ref_stats.psInvocations - ref_stats.fragmentsLateDepthKilled)
+            << tilted;
+        EXPECT_GT(scalar_stats.fragmentsEarlyDepthKilled, 300u) << tilted;
+        for (const unsigned threads : {1u, 2u, 3u}) {
+            PipelineStatistics pair_stats, eight_stats;
+            const RenderTarget pair = renderParticles(ps, &pair_stats, false, wall, threads, tilted);
+            const RenderTarget eight =
+                renderParticles(PsFireEightOnly{ps}, &eight_stats, false, wall, threads, tilted);
+            EXPECT_TRUE(pair == ref) << tilted << " " << threads;
+            EXPECT_TRUE(eight == ref) << tilted << " " << threads;
+            EXPECT_EQ(pair_stats.rectanglesRecognized, tilted ? 0u : 3000u);
+            for (const PipelineStatistics* s : {&pair_stats, &eight_stats}) {
+                // Most particles overlap others in this cloud: most fragments come after the first.
+                EXPECT_GT(s->fragmentsBlendSaturated, scalar_stats.psInvocations / 3)
+                    << tilted << " " << threads;
+                EXPECT_EQ(s->psInvocations + s->fragmentsBlendSaturated, scalar_stats.psInvocations)
+                    << tilted << " " << threads;
+                EXPECT_EQ(s->fragmentsEarlyDepthKilled, scalar_stats.fragmentsEarlyDepthKilled) << tilted;
+            }
+            // A rectangle's pair is skipped only when both its blocks are at the ceiling; a block
+            // alone, or a triangle's block, whenever it is.
+            if (tilted)
+                EXPECT_EQ(eight_stats.fragmentsBlendSaturated, pair_stats.fragmentsBlendSaturated);
+            else
+                EXPECT_GT(eight_stats.fragmentsBlendSaturated, pair_stats.fragmentsBlendSaturated);
+        }
+    }
 }
 
 // A read-only depth draw skips the per-block test where a rectangle lies in front of the tile's

@@ -2,14 +2,16 @@
 
 namespace raster {
 
-#define RASTER_STAT_FIELDS(X)                                                                             \
-    X(iaVertices) X(iaPrimitives) X(vsInvocations) X(gsInvocations) X(gsPrimitives) X(cInvocations)      \
-    X(cPrimitives) X(psInvocations) X(primitivesNonFinite) X(primitivesOutside) X(primitivesClipped)     \
-    X(primitivesCulled) X(primitivesDegenerate) X(primitivesNoPixels) X(rectanglesRecognized) X(tilesBinned) X(tilesRejected)    \
-    X(tilesOccluded)                                                                                    \
-    X(fragmentsEarlyDepthKilled) X(fragmentsLateDepthKilled) X(fragmentsDiscarded) X(fragmentsBlendNoOp) \
-    X(fragmentsOverdrawSkipped)                                                                          \
+// clang-format off
+#define RASTER_STAT_FIELDS(X)                                                                           \
+    X(iaVertices) X(iaPrimitives) X(vsInvocations) X(gsInvocations) X(gsPrimitives) X(cInvocations)    \
+    X(cPrimitives) X(psInvocations) X(primitivesNonFinite) X(primitivesOutside) X(primitivesClipped)   \
+    X(primitivesCulled) X(primitivesDegenerate) X(primitivesNoPixels) X(rectanglesRecognized)          \
+    X(tilesBinned) X(tilesRejected) X(tilesOccluded)                                                   \
+    X(fragmentsEarlyDepthKilled) X(fragmentsLateDepthKilled) X(fragmentsDiscarded)                     \
+    X(fragmentsBlendNoOp) X(fragmentsBlendSaturated) X(fragmentsOverdrawSkipped)                       \
     X(helperInvocations) X(derivativeReplays) X(sortsAvoided)
+// clang-format on
 
 PipelineStatistics& PipelineStatistics::operator+=(const PipelineStatistics& o) {
 #define RASTER_ADD(f) f += o.f;

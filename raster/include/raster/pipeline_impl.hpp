@@ -625,9 +625,10 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                 const Float8 lane_y(simd::F32x8{0, 0, 0, 0, 1, 1, 1, 1});
                 const Float8 z8 = Float8(float(z));
                 // Statistics in locals, per block only what cannot be counted per rectangle: blocks
-                // shaded, their live lanes and their no-op lanes. Helpers = 8·blocks − live; lanes the
-                // early depth test killed = lanes of blocks taken whole − live lanes of those blocks.
-                uint64_t blocks = 0, live_lanes = 0, no_ops = 0, whole_lanes = 0, whole_live = 0;
+                // shaded, their live lanes, their no-op lanes, lanes skipped at the blend's ceiling.
+                // Helpers = 8·blocks − live; lanes the early depth test killed = lanes of blocks
+                // taken whole − the lanes of those blocks that passed it.
+                uint64_t blocks = 0, live_lanes = 0, no_ops = 0, ceiling = 0, whole_lanes = 0, passed = 0;
                 // attribute = (base + i·step_x) + j·step_y, the scalar path's order; j·step_y per row.
                 auto rowPart = [&](int32_t y, Float8 (&row_part)[kN]) {
                     const Float8 j = Float8(float(y - by)) + lane_y;
@@ -657,22 +658,40 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                         color_here.writeWide(x, y, c, live);
                     }
                 };
-                // One block inside the tile through depth, shader and blend at once, its lanes outside
-                // the rectangle (not in `covered`) masked off; returns the lanes shaded.
-                [[maybe_unused]] auto shadeBlock = [&](int32_t x, int32_t y, uint32_t covered,
-                                                       const Float8 (&row_part)[kN]) -> uint32_t {
+                // The lanes of a block inside the tile in `covered` that pass the depth test, counted.
+                [[maybe_unused]] auto passing = [&](int32_t x, int32_t y, uint32_t covered) -> uint32_t {
+                    uint32_t live = covered;
+                    if constexpr (Depth::kEnabled && Depth::kWide) {
+                        if (!in_front) live &= depth_here.testWide(x, y, z8);
+                    }
+                    passed += uint64_t(std::popcount(live));
+                    return live;
+                };
+                // Blocks whose pixels are all at the blend's ceiling are not shaded, their live lanes
+                // counted. Why: dense additive particles saturate the middle of the cloud, and every
+                // fragment after that changes nothing (100 000 particles at 1080p: 12 % of the
+                // fragments; PERFORMANCE.md). Tested after depth, so that the counts add up to the
+                // traced draw's, which shades every fragment.
+                [[maybe_unused]] auto skipped = [&](bool at_ceiling, uint32_t lanes) {
+                    if (at_ceiling) ceiling += uint64_t(std::popcount(lanes));
+                    return at_ceiling;
+                };
+                // One block inside the tile whose live lanes are known: shaded and merged unless at the
+                // ceiling.
+                [[maybe_unused]] auto shadeLive = [&](int32_t x, int32_t y, uint32_t live,
+                                                      const Float8(&row_part)[kN]) {
                     if constexpr (Depth::kWide && Color::kWide) {
-                        uint32_t live = covered;
-                        if constexpr (Depth::kEnabled) {
-                            if (!in_front) live &= depth_here.testWide(x, y, z8);
-                            if (!live) return 0u;
-                        }
+                        if constexpr (Color::kCeiling)
+                            if (skipped(color_here.template atCeiling<1>(x, y), live)) return;
                         ++blocks;
                         mergeBlock(x, y, shader_here(inputs(x, row_part)), live);
-                        return live;
-                    } else {
-                        return 0u;
                     }
+                };
+                // One block inside the tile through depth, shader and blend at once, its lanes outside
+                // the rectangle (not in `covered`) masked off.
+                [[maybe_unused]] auto shadeBlock = [&](int32_t x, int32_t y, uint32_t covered,
+                                                       const Float8(&row_part)[kN]) {
+                    if (const uint32_t live = passing(x, y, covered)) shadeLive(x, y, live, row_part);
                 };
                 // Blocks x and x + 4 of a row pair inside the tile through one Float8x2 call when both
                 // have live lanes (else each alone); the same bits as shadeBlock on each. Why: a
@@ -681,22 +700,21 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                 [[maybe_unused]] auto shadePair = [&](int32_t x, int32_t y, uint32_t covered0, uint32_t covered1,
                                                       const Float8 (&row_part)[kN]) {
                     if constexpr (Depth::kWide && Color::kWide && kPairs) {
-                        uint32_t live[2] = {covered0, covered1};
-                        if constexpr (Depth::kEnabled) {
-                            if (!in_front) {
-                                live[0] &= depth_here.testWide(x, y, z8);
-                                live[1] &= depth_here.testWide(x + 4, y, z8);
-                            }
-                        }
-                        if (!live[0] || !live[1]) {
-                            if (live[0]) shadeBlock(x, y, covered0, row_part);
-                            if (live[1]) shadeBlock(x + 4, y, covered1, row_part);
+                        const uint32_t live0 = passing(x, y, covered0), live1 = passing(x + 4, y, covered1);
+                        if (!live0 || !live1) {
+                            if (live0) shadeLive(x, y, live0, row_part);
+                            if (live1) shadeLive(x + 4, y, live1, row_part);
                             return;
                         }
+                        // Both blocks at once (one branch, not two): a pair with one block at the ceiling
+                        // is shaded whole, which stores that block unchanged.
+                        if constexpr (Color::kCeiling)
+                            if (skipped(color_here.template atCeiling<2>(x, y), live0 | (live1 << 8))) return;
                         const glm::vec<4, Float8x2> c2 =
                             shader_here(detail::zipBlocks<V>(inputs(x, row_part), inputs(x + 4, row_part)));
                         blocks += 2;
-                        for (int h = 0; h < 2; ++h) mergeBlock(x + 4 * h, y, detail::blockOf(c2, h), live[h]);
+                        mergeBlock(x, y, detail::blockOf(c2, 0), live0);
+                        mergeBlock(x + 4, y, detail::blockOf(c2, 1), live1);
                     }
                 };
                 bool done = false;
@@ -711,8 +729,8 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                         uint8_t columns[kMaxBlocks];
                         const int n_blocks = (x1 - bx0) / 4 + 1;
                         RASTER_DCHECK(n_blocks <= kMaxBlocks);
-                        for (int k = 0; k < n_blocks; ++k) columns[k] = uint8_t(blockColumns(bx0 + 4 * k, x0, x1));
-                        const uint64_t live_before = live_lanes;
+                        for (int k = 0; k < n_blocks; ++k)
+                            columns[k] = uint8_t(blockColumns(bx0 + 4 * k, x0, x1));
                         for (int32_t y = by0; y <= y1; y += 2) {
                             // Lanes of the rectangle in this row pair: the top row (0x0F), the bottom (0xF0).
                             const uint32_t rows = (y >= y0 ? 0x0Fu : 0u) | (y + 1 <= y1 ? 0xF0u : 0u);
@@ -725,7 +743,6 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                             for (; k < n_blocks; ++k) shadeBlock(bx0 + 4 * k, y, rows & columns[k], row_part);
                         }
                         whole_lanes += uint64_t(x1 - x0 + 1) * uint64_t(y1 - y0 + 1);
-                        whole_live += live_lanes - live_before;
                         done = true;
                     }
                 }
@@ -740,7 +757,7 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                             if (rows_in_tile && x >= tile.x0 && x + 3 <= tile.x1) {
                                 const uint32_t covered = rows & blockColumns(x, x0, x1);
                                 whole_lanes += uint64_t(std::popcount(covered));
-                                whole_live += uint64_t(std::popcount(shadeBlock(x, y, covered, row_part)));
+                                shadeBlock(x, y, covered, row_part);
                                 continue;
                             }
                         }
@@ -764,8 +781,9 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                 }
                 st.psInvocations += live_lanes;
                 st.helperInvocations += 8 * blocks - live_lanes;
-                st.fragmentsEarlyDepthKilled += whole_lanes - whole_live;
+                st.fragmentsEarlyDepthKilled += whole_lanes - passed;
                 st.fragmentsBlendNoOp += no_ops;
+                st.fragmentsBlendSaturated += ceiling;
             }
         };
 
@@ -843,6 +861,12 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                             live &= depth_here.testWide(x, y, z);
                             st.fragmentsEarlyDepthKilled += uint64_t(std::popcount(mask & ~live));
                             if (!live) return;
+                        }
+                        if constexpr (Color::kCeiling) {  // as in shadeRectWide
+                            if (color_here.template atCeiling<1>(x, y)) {
+                                st.fragmentsBlendSaturated += uint64_t(std::popcount(live));
+                                return;
+                            }
                         }
                         if constexpr (kPairs) {
                             Wide<V> in;

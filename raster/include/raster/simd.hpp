@@ -110,6 +110,7 @@ struct alignas(32) Int8 {
     friend Int8 operator>>(Int8 a, int s) { return simd::I32x8(simd::U32x8(a.v) >> s); }
     friend Mask8 operator<(Int8 a, Int8 b) { return {a.v < b.v}; }
     friend Mask8 operator>(Int8 a, Int8 b) { return {a.v > b.v}; }
+    friend Mask8 operator==(Int8 a, Int8 b) { return {a.v == b.v}; }
 };
 
 inline Float8 select(Mask8 m, Float8 a, Float8 b) { return m.v ? a.v : b.v; }

@@ -36,6 +36,9 @@ struct PipelineStatistics {
     uint64_t fragmentsDiscarded = 0;      // the pixel shader returned std::nullopt
     uint64_t fragmentsBlendNoOp = 0;      // blend could not change the pixel (the eight-wide merge
                                           // may store it unchanged with its block's other pixels)
+    uint64_t fragmentsBlendSaturated = 0;   // passed the depth test, but their 4×2 block was already at
+                                            // the blend's ceiling (additive blend: every byte 255), which
+                                            // no fragment can change: never shaded (eight-wide paths)
     uint64_t fragmentsOverdrawSkipped = 0;  // passed the depth test, but a later fragment of the same
                                           // opaque draw replaced them before they were shaded: never
                                           // shaded (deferred shading, see Context::renderTiles)

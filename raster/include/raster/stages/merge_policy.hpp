@@ -176,6 +176,29 @@ struct ColorFast {
     static constexpr bool kWide = std::is_same_v<Blender, BlendReplaceRgba8> || std::is_same_v<Blender, BlendAdditiveRgba8>;
     uint8_t* pixels;
     uint32_t width;
+    // Whether this blend has a ceiling: a pixel value no fragment can change. The additive blend
+    // adds non-negative units with unsigned saturation, so a pixel at 255 in all four bytes stays
+    // there whatever the shader returns (NaN included: saturate makes it 0).
+    static constexpr bool kCeiling = std::is_same_v<Blender, BlendAdditiveRgba8>;
+    // Whether all pixels of n side-by-side 4×2 blocks at (x, y) are at the ceiling (n = 1 or 2).
+    template <int n>
+    bool atCeiling(int32_t x, int32_t y) const {
+        static_assert(n == 1 || n == 2);
+        const uint8_t* row0 = pixels + 4 * (size_t(y) * width + x);
+        const uint8_t* row1 = row0 + 4 * size_t(width);
+        Int8 both;
+        if constexpr (n == 2) {  // two rows of eight: one register each, ANDed, then one test
+            // 32-byte loads, though writeWide stores 16 at a time: the blocks' last stores are long
+            // retired here, and four 16-byte loads measured slower (PERFORMANCE.md).
+            Int8 top, bottom;
+            std::memcpy(&top.v, row0, 32);
+            std::memcpy(&bottom.v, row1, 32);
+            both = top & bottom;
+        } else {
+            both = detail::loadBlock(row0, row1);
+        }
+        return (both == Int8(-1)).bits() == 0xFFu;
+    }
     // Lanes whose fragment cannot change the pixel.
     uint32_t noOpWide(const glm::vec<4, Float8>& c) const {
         if constexpr (std::is_same_v<Blender, BlendAdditiveRgba8>)
@@ -247,6 +270,11 @@ struct ColorFast {
 template <class Real>
 struct ColorGeneric {
     static constexpr bool kWide = false;
+    static constexpr bool kCeiling = false;  // traced draws show every fragment; reference mode skips none
+    template <int n>
+    bool atCeiling(int32_t, int32_t) const {
+        return false;
+    }
     uint32_t noOpWide(const glm::vec<4, Float8>&) const { return 0; }
     void writeWide(int32_t, int32_t, const glm::vec<4, Float8>&, uint32_t) const {}
     RenderTarget* const* targets;
@@ -280,6 +308,11 @@ struct ColorGeneric {
 
 struct ColorNone {  // no render target bound: a depth-only pass
     static constexpr bool kWide = true;
+    static constexpr bool kCeiling = false;
+    template <int n>
+    bool atCeiling(int32_t, int32_t) const {
+        return false;
+    }
     uint32_t noOpWide(const glm::vec<4, Float8>&) const { return 0xFF; }
     void writeWide(int32_t, int32_t, const glm::vec<4, Float8>&, uint32_t) const {}
     template <class Colors>
