@@ -669,7 +669,7 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                 };
                 // Blocks whose pixels are all at the blend's ceiling are not shaded, their live lanes
                 // counted. Why: dense additive particles saturate the middle of the cloud, and every
-                // fragment after that changes nothing (100 000 particles at 1080p: 12 % of the
+                // fragment after that changes nothing (100 000 particles at 1080p: 11 % of the
                 // fragments; PERFORMANCE.md). Tested after depth, so that the counts add up to the
                 // traced draw's, which shades every fragment.
                 [[maybe_unused]] auto skipped = [&](bool at_ceiling, uint32_t lanes) {
