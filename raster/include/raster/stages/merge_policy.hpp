@@ -270,11 +270,9 @@ struct ColorFast {
 template <class Real>
 struct ColorGeneric {
     static constexpr bool kWide = false;
-    static constexpr bool kCeiling = false;  // traced draws show every fragment; reference mode skips none
-    template <int n>
-    bool atCeiling(int32_t, int32_t) const {
-        return false;
-    }
+    // No ceiling: traced draws show every fragment, the reference skips none (atCeiling is only
+    // called under `if constexpr (Color::kCeiling)`).
+    static constexpr bool kCeiling = false;
     uint32_t noOpWide(const glm::vec<4, Float8>&) const { return 0; }
     void writeWide(int32_t, int32_t, const glm::vec<4, Float8>&, uint32_t) const {}
     RenderTarget* const* targets;
@@ -309,10 +307,6 @@ struct ColorGeneric {
 struct ColorNone {  // no render target bound: a depth-only pass
     static constexpr bool kWide = true;
     static constexpr bool kCeiling = false;
-    template <int n>
-    bool atCeiling(int32_t, int32_t) const {
-        return false;
-    }
     uint32_t noOpWide(const glm::vec<4, Float8>&) const { return 0xFF; }
     void writeWide(int32_t, int32_t, const glm::vec<4, Float8>&, uint32_t) const {}
     template <class Colors>
