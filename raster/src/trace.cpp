@@ -80,7 +80,11 @@ std::string jvec(const glm::vec4& v) {
     if (std::isnan(v.x) && std::isnan(v.y) && std::isnan(v.z) && std::isnan(v.w)) return "null";
     // Appended, not `"[" + …`: GCC 12 warns falsely (-Wrestrict) on a literal + std::string.
     std::string s = "[";
-    s += num(v.x), s += ",", s += num(v.y), s += ",", s += num(v.z), s += ",", s += num(v.w), s += "]";
+    for (int c = 0; c < 4; ++c) {
+        if (c > 0) s += ',';
+        s += num(v[c]);
+    }
+    s += ']';
     return s;
 }
 
