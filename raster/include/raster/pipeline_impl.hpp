@@ -7,6 +7,16 @@
 #include <type_traits>
 #include <variant>
 
+// The fill loops are flattened (their whole call tree inlined): their speed depends on the shader,
+// sampler and merge being one block of code (PERFORMANCE.md). Under AddressSanitizer that tree,
+// instrumented, takes GCC over 15 minutes and nearly 5 GB for one file, so sanitizer builds
+// (RASTER_SANITIZE) leave the inlining to the compiler; what the code does is the same either way.
+#if defined(__SANITIZE_ADDRESS__)
+#define RASTER_FLATTEN
+#else
+#define RASTER_FLATTEN __attribute__((flatten))
+#endif
+
 namespace raster {
 
 template <VertexShader VS, GeometryShader GS, PixelShader PS>
@@ -604,7 +614,7 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
         // in_front: the rectangle passes the depth test in every pixel of the tile (inFrontInTile).
         [[maybe_unused]] auto shadeRectWide = [&](const RectSetup& r, const float* base, const float* step_x,
                                                   const float* step_y, Real z,
-                                                  bool in_front) __attribute__((flatten)) {
+                                                  bool in_front) RASTER_FLATTEN {
             if constexpr (kWide) {
                 constexpr uint32_t kN = kVertexFloats<V>;
                 // What every block reads, in locals: the targets are written through uint8_t and float
@@ -820,7 +830,7 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
         // through depth, shader and blend at once; blocks on the tile's border go quad by quad.
         [[maybe_unused]] auto shadeTriangleWide = [&](const TriangleSetup& t, const TriangleInterpolant<Real>& ti,
                                                       const EdgeSteps& steps,
-                                                      const V* const (&verts)[3]) __attribute__((flatten)) {
+                                                      const V* const (&verts)[3]) RASTER_FLATTEN {
             if constexpr (kWide && Depth::kWide && Color::kWide) {
                 // Locals, as in shadeRectWide: stores to the targets would otherwise reload them.
                 const PixelRect tile = rect;
@@ -924,7 +934,7 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
         // cannot write depth; the fragments a later one replaced are never shaded. Taken for tiles
         // of two triangles or more (nothing to save with one) and none of another kind, whose 4×2
         // blocks all lie inside the tile.
-        [[maybe_unused]] auto shadeDeferred = [&]() __attribute__((flatten)) {
+        [[maybe_unused]] auto shadeDeferred = [&]() RASTER_FLATTEN {
             if constexpr (kDeferrable) {
                 if (rect.x0 % 4 != 0 || (rect.x1 + 1) % 4 != 0 || rect.y0 % 2 != 0 || (rect.y1 + 1) % 2 != 0)
                     return false;
