@@ -14,6 +14,12 @@ struct EightOnly {
     PS inner;
     glm::vec4 operator()(const Input& in) const { return inner(in); }
     glm::vec<4, Float8> operator()(const Wide<Input>& in) const { return inner(in); }
+    // What the inner shader declares of its alpha (shader.hpp), so that both paths skip alike.
+    AlphaSource alphaSource() const
+        requires AlphaSourcePixelShader<PS>
+    {
+        return inner.alphaSource();
+    }
 };
 
 }  // namespace raster

@@ -2,18 +2,21 @@
 // scalar path they shortcut.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdio>
 #include <functional>
 #include <limits>
 #include <random>
+#include <string>
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "raster/scenes.hpp"
 #include "raster/shaders/billboard.hpp"
 #include "raster/simd.hpp"
+#include "raster/stages/transparency.hpp"
 #include "raster/texture.hpp"
 
 #include "eight_only.hpp"
@@ -129,7 +132,7 @@ struct GsTilted : shaders::GsBillboard {
 template <class PS>
 RenderTarget renderParticles(const PS& ps, PipelineStatistics* stats, bool reference = false,
                              const std::function<void(DepthTarget&)>& prepareDepth = {}, unsigned threads = 2,
-                             bool tilted = false) {
+                             bool tilted = false, float half_size = 0.08f) {
     SceneOptions o;
     o.width = 320, o.height = 180;
     RenderTarget color(o.width, o.height);
@@ -156,7 +159,7 @@ RenderTarget renderParticles(const PS& ps, PipelineStatistics* stats, bool refer
     shaders::GsBillboard gs;
     const glm::mat4 proj = glm::perspectiveRH_ZO(glm::radians(60.0f), 320.0f / 180.0f, 0.1f, 100.0f);
     gs.viewProj = proj * glm::lookAtRH(glm::vec3(0, 0.3f, 4), glm::vec3(0), glm::vec3(0, 1, 0));
-    gs.billboardSize = {0.08f * proj[0][0], 0.08f * proj[1][1]};
+    gs.billboardSize = {half_size * proj[0][0], half_size * proj[1][1]};
     if (tilted)
         ctx.draw(shaders::VsBillboard{}, GsTilted{gs}, ps, uint32_t(points.size()));
     else
@@ -175,7 +178,13 @@ TEST(Rectangles, BillboardsAreRecognisedAndWideShadingMatchesScalar) {
     const RenderTarget e = renderParticles(PsFireEightOnly{wide}, &eight_stats);
     EXPECT_EQ(wide_stats.rectanglesRecognized, 3000u);
     EXPECT_EQ(wide_stats.gsPrimitives, 6000u);
-    EXPECT_EQ(wide_stats.psInvocations, scalar_stats.psInvocations);
+    // The eight-wide paths skip the sprites' transparent corners (transparency.hpp), the scalar one
+    // shades them.
+    EXPECT_GT(wide_stats.fragmentsTransparentSkipped, scalar_stats.psInvocations / 10);
+    EXPECT_EQ(scalar_stats.fragmentsTransparentSkipped, 0u);
+    EXPECT_EQ(wide_stats.psInvocations + wide_stats.fragmentsTransparentSkipped, scalar_stats.psInvocations);
+    EXPECT_EQ(wide_stats.fragmentsBlendNoOp + wide_stats.fragmentsTransparentSkipped,
+              scalar_stats.fragmentsBlendNoOp);
     EXPECT_TRUE(a == b) << "eight-wide shading changed the image";
     // Two blocks per call (PsFire) against one (PsFireEightOnly): the same image and the same
     // counts, helper lanes and blend no-ops included.
@@ -184,11 +193,13 @@ TEST(Rectangles, BillboardsAreRecognisedAndWideShadingMatchesScalar) {
     EXPECT_EQ(wide_stats.helperInvocations, eight_stats.helperInvocations);
     EXPECT_EQ(wide_stats.fragmentsBlendNoOp, eight_stats.fragmentsBlendNoOp);
     EXPECT_EQ(wide_stats.fragmentsEarlyDepthKilled, eight_stats.fragmentsEarlyDepthKilled);
+    EXPECT_EQ(wide_stats.fragmentsTransparentSkipped, eight_stats.fragmentsTransparentSkipped);
     EXPECT_GT(wide_stats.fragmentsBlendNoOp, 0u);
     // The reference pipeline draws the same billboards as two triangles each.
     const RenderTarget r = renderParticles(wide, &ref_stats, true);
     EXPECT_EQ(ref_stats.rectanglesRecognized, 0u);
-    EXPECT_EQ(ref_stats.psInvocations, wide_stats.psInvocations) << "rectangles must cover the same pixels";
+    EXPECT_EQ(ref_stats.psInvocations, wide_stats.psInvocations + wide_stats.fragmentsTransparentSkipped)
+        << "rectangles must cover the same pixels";
     const std::vector<uint8_t> x = a.toRgba8(), y = r.toRgba8();
     int worst = 0;
     for (size_t i = 0; i < x.size(); ++i) worst = std::max(worst, std::abs(int(x[i]) - int(y[i])));
@@ -246,6 +257,164 @@ TEST(Rectangles, BlocksAtTheAdditiveCeilingAreCountedNotShaded) {
                 EXPECT_GT(eight_stats.fragmentsBlendSaturated, pair_stats.fragmentsBlendSaturated);
         }
     }
+}
+
+// A pixel shader as it is, less its AlphaSource: the pipeline then shades every pixel.
+template <class PS>
+struct WithoutAlphaSource {
+    using Input = typename PS::Input;
+    PS inner;
+    template <class In>
+    auto operator()(const In& in) const {
+        return inner(in);
+    }
+};
+static_assert(AlphaSourcePixelShader<shaders::PsFire> && AlphaSourcePixelShader<PsFireEightOnly>);
+static_assert(!AlphaSourcePixelShader<WithoutAlphaSource<shaders::PsFire>>);
+static_assert(PairPixelShader<WithoutAlphaSource<shaders::PsFire>>);
+
+// Textures with transparent texels in many shapes: ragged rows, holes, a transparent band, alpha
+// next to transparency at every edge, and the fire texture itself.
+std::vector<Texture2D> transparencyTextures() {
+    std::vector<Texture2D> out;
+    out.push_back(makeFireTexture());
+    std::mt19937 rng(11);
+    for (const auto& [w, h] : {std::pair{13, 9}, std::pair{5, 17}, std::pair{40, 3}}) {
+        std::vector<uint8_t> texels(size_t(w * h) * 4);
+        for (int y = 0; y < h; ++y) {
+            const int first = int(rng() % uint32_t(w + 1)), last = int(rng() % uint32_t(w));
+            const bool band = y % 4 == 1;  // a whole transparent row
+            for (int x = 0; x < w; ++x) {
+                uint8_t* t = &texels[size_t(y * w + x) * 4];
+                for (int c = 0; c < 3; ++c) t[c] = uint8_t(rng());
+                const bool visible = !band && x >= first && x <= last && rng() % 5 != 0;  // holes too
+                t[3] = visible ? uint8_t(1 + rng() % 255) : 0;
+            }
+        }
+        out.push_back(Texture2D::fromRgba8(uint32_t(w), uint32_t(h), texels, false));
+    }
+    return out;
+}
+
+// Billboard pixels whose every texel has alpha 0 are skipped before the shader, and the image is
+// the one of shading them all, bit for bit, at sprite sizes from minified to many tiles wide, for
+// bilinear and point samples, on any thread count; what was skipped is counted, and adds up to what
+// the full draw shades. An address mode other than Clamp skips nothing. The largest sprites also
+// reach the additive blend's ceiling.
+TEST(Rectangles, TransparentPixelsAreSkippedWithTheSameImage) {
+    const std::vector<Texture2D> textures = transparencyTextures();
+    auto wall = [](DepthTarget& d) {
+        for (uint32_t x = 0; x < 320; ++x) d.store(x, 91, 0.0f);
+    };
+    for (size_t t = 0; t < textures.size(); ++t) {
+        for (const SamplerState& sampler : {SamplerState::bilinear(AddressMode::Clamp),
+                                            SamplerState::point(AddressMode::Clamp),
+                                            SamplerState::bilinear(AddressMode::Wrap)}) {
+            for (const float half_size : {0.02f, 0.08f, 0.7f}) {
+                shaders::PsFire ps;
+                ps.billboardTexture = &textures[t];
+                ps.sampler = sampler;
+                const std::string what = "texture " + std::to_string(t) + " size " +
+                                         std::to_string(half_size) + " address " +
+                                         std::to_string(int(sampler.addressU)) + " filter " +
+                                         std::to_string(int(sampler.magFilter));
+                PipelineStatistics full_stats;
+                const RenderTarget full = renderParticles(WithoutAlphaSource<shaders::PsFire>{ps}, &full_stats,
+                                                          false, wall, 2, false, half_size);
+                EXPECT_EQ(full_stats.fragmentsTransparentSkipped, 0u) << what;
+                for (const unsigned threads : {1u, 3u}) {
+                    PipelineStatistics s;
+                    const RenderTarget skipped = renderParticles(ps, &s, false, wall, threads, false, half_size);
+                    ASSERT_TRUE(skipped == full) << what << " threads " << threads;
+                    // Every fragment that passes the depth test is shaded, at the ceiling or transparent.
+                    EXPECT_EQ(s.psInvocations + s.fragmentsBlendSaturated + s.fragmentsTransparentSkipped,
+                              full_stats.psInvocations + full_stats.fragmentsBlendSaturated)
+                        << what;
+                    // Where nothing reaches the ceiling (which pairs blocks differently once some are
+                    // skipped), every skipped fragment is one the full draw shades to a blend no-op.
+                    if (full_stats.fragmentsBlendSaturated == 0 && s.fragmentsBlendSaturated == 0)
+                        EXPECT_EQ(s.fragmentsBlendNoOp + s.fragmentsTransparentSkipped,
+                                  full_stats.fragmentsBlendNoOp)
+                            << what;
+                    EXPECT_EQ(s.fragmentsEarlyDepthKilled, full_stats.fragmentsEarlyDepthKilled) << what;
+                    if (sampler.addressU == AddressMode::Wrap)
+                        EXPECT_EQ(s.fragmentsTransparentSkipped, 0u) << what;
+                    else  // every texture here has transparent rows or columns to skip
+                        EXPECT_GT(s.fragmentsTransparentSkipped, full_stats.psInvocations / 50) << what;
+                }
+            }
+        }
+    }
+}
+
+// The skip's interval per row pair holds every pixel whose footprint, computed from the float
+// coordinates as the sampler does, reads a texel of non-zero alpha, for random planes (both signs
+// of step, sub-texel offsets, clamped edges), and is empty for a texture transparent everywhere.
+TEST(TransparentColumns, RowIntervalHoldsEveryPixelThatMayBeVisible) {
+    const std::vector<Texture2D> textures = transparencyTextures();
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    for (const Texture2D& tex : textures) {
+        const SamplerState sampler = SamplerState::bilinear(AddressMode::Clamp);
+        const detail::TransparentColumns columns(AlphaSource{&tex, &sampler, 4});
+        ASSERT_TRUE(columns.enabled());
+        const int tw = int(tex.width()), th = int(tex.height());
+        auto alphaAt = [&](int x, int y) {
+            return tex.load(std::clamp(x, 0, tw - 1), std::clamp(y, 0, th - 1)).w;
+        };
+        uint64_t skipped = 0;
+        for (int trial = 0; trial < 300; ++trial) {
+            const int w = 1 + int(rng() % 60), h = 1 + int(rng() % 60);
+            // u from about −0.2 to 1.2 across the box, either way round.
+            const float span_u = float((unit(rng) * 1.4 + 0.1) * (rng() % 2 ? 1 : -1));
+            const float bu = float(span_u > 0 ? unit(rng) * 0.4 - 0.2 : 1.0 + unit(rng) * 0.4 - 0.2);
+            const float span_v = float(unit(rng) * 1.4 + 0.1);
+            const float bv = float(unit(rng) * 0.4 - 0.2);
+            float base[6] = {0, 0, 0, 1, bu, bv}, sx[6] = {}, sy[6] = {};
+            sx[4] = span_u / float(w), sy[5] = span_v / float(h);
+            const auto planes = columns.planes(base, sx, sy, w, h);
+            ASSERT_TRUE(planes.usable);
+            for (int j = 0; j < h; j += 2) {
+                int32_t lo, hi;
+                columns.rowPair(planes, j, 0, w - 1, lo, hi);
+                for (int i = 0; i < w; ++i) {
+                    bool visible = false;
+                    for (int jj = j; jj <= j + 1; ++jj) {
+                        const float u = base[4] + float(i) * sx[4], v = base[5] + float(jj) * sy[5];
+                        const int ia = int(std::floor(u * float(tw) - 0.5f));
+                        const int ib = int(std::floor(v * float(th) - 0.5f));
+                        for (int dy = 0; dy <= 1; ++dy)
+                            for (int dx = 0; dx <= 1; ++dx) visible |= alphaAt(ia + dx, ib + dy) != 0.0f;
+                    }
+                    if (visible)
+                        ASSERT_TRUE(i >= lo && i <= hi) << "pixel " << i << " row " << j << " of " << w << "x" << h;
+                    else if (i < lo || i > hi)
+                        ++skipped;
+                }
+            }
+        }
+        EXPECT_GT(skipped, 1000u) << "the interval should leave transparent pixels out";
+    }
+    // Transparent everywhere: nothing to shade; and no skip where it cannot be proven.
+    const std::vector<uint8_t> clear(8 * 8 * 4, 0);
+    const Texture2D empty = Texture2D::fromRgba8(8, 8, clear, false);
+    const SamplerState clamp = SamplerState::bilinear(AddressMode::Clamp);
+    const detail::TransparentColumns none(AlphaSource{&empty, &clamp, 4});
+    const float base[6] = {0, 0, 0, 1, 0.1f, 0.1f};
+    const float sx[6] = {0, 0, 0, 0, 0.05f, 0}, sy[6] = {0, 0, 0, 0, 0, 0.05f};
+    int32_t lo, hi;
+    none.rowPair(none.planes(base, sx, sy, 16, 16), 4, 0, 15, lo, hi);
+    EXPECT_GT(lo, hi);
+    const float tilted_sy[6] = {0, 0, 0, 0, 0.01f, 0.05f};  // u varies along y too
+    EXPECT_FALSE(none.planes(base, sx, tilted_sy, 16, 16).usable);
+    const float far_base[6] = {0, 0, 0, 1, 100.0f, 0.1f};
+    EXPECT_FALSE(none.planes(far_base, sx, sy, 16, 16).usable);
+    const float nan_base[6] = {0, 0, 0, 1, std::nanf(""), 0.1f};
+    EXPECT_FALSE(none.planes(nan_base, sx, sy, 16, 16).usable);
+    const SamplerState wrap = SamplerState::bilinear(AddressMode::Wrap);
+    EXPECT_FALSE(detail::TransparentColumns(AlphaSource{&empty, &wrap, 4}).enabled());
+    const Texture2D mipmapped = Texture2D::fromRgba8(8, 8, clear, true);
+    EXPECT_FALSE(detail::TransparentColumns(AlphaSource{&mipmapped, &clamp, 4}).enabled());
 }
 
 // A read-only depth draw skips the per-block test where a rectangle lies in front of the tile's

@@ -456,7 +456,8 @@ void expectTracedSceneIdentical(std::string_view name, const SceneOptions& o, bo
         // culled: a traced draw shades quad by quad rather than eight wide (other helper lanes) and
         // tests every fragment's depth (no whole-tile shortcuts); and an untraced opaque draw may
         // shade deferred, leaving fragments a later one replaced unshaded, which a traced draw shades,
-        // and skip blocks at the additive blend's ceiling, which a traced draw shades too.
+        // and skip blocks at the additive blend's ceiling or known to be transparent, which a traced
+        // draw shades too.
         ASSERT_EQ(ctx.drawStatisticsLog().size(), plainLog.size()) << what;
         for (size_t d = 0; d < plainLog.size(); ++d) {
             const PipelineStatistics &a = ctx.drawStatisticsLog()[d], &b = plainLog[d];
@@ -469,7 +470,8 @@ void expectTracedSceneIdentical(std::string_view name, const SceneOptions& o, bo
                     s.gsPrimitives,
                     s.cInvocations,
                     s.cPrimitives,
-                    s.psInvocations + s.fragmentsOverdrawSkipped + s.fragmentsBlendSaturated,
+                    s.psInvocations + s.fragmentsOverdrawSkipped + s.fragmentsBlendSaturated +
+                        s.fragmentsTransparentSkipped,
                     s.primitivesNonFinite,
                     s.primitivesOutside,
                     s.primitivesClipped,
@@ -481,7 +483,8 @@ void expectTracedSceneIdentical(std::string_view name, const SceneOptions& o, bo
                     s.tilesRejected,
                     s.fragmentsLateDepthKilled,
                     s.fragmentsDiscarded,
-                    s.fragmentsBlendNoOp,
+                    // A skipped transparent fragment is a no-op that the traced draw shades.
+                    s.fragmentsBlendNoOp + s.fragmentsTransparentSkipped,
                     s.sortsAvoided};
             };
             EXPECT_EQ(fields(a), fields(b)) << what << ", draw " << d << "\n"

@@ -9,7 +9,8 @@ namespace raster {
     X(primitivesCulled) X(primitivesDegenerate) X(primitivesNoPixels) X(rectanglesRecognized)          \
     X(tilesBinned) X(tilesRejected) X(tilesOccluded)                                                   \
     X(fragmentsEarlyDepthKilled) X(fragmentsLateDepthKilled) X(fragmentsDiscarded)                     \
-    X(fragmentsBlendNoOp) X(fragmentsBlendSaturated) X(fragmentsOverdrawSkipped)                       \
+    X(fragmentsBlendNoOp) X(fragmentsBlendSaturated) X(fragmentsTransparentSkipped)                    \
+    X(fragmentsOverdrawSkipped)                                                                        \
     X(helperInvocations) X(derivativeReplays) X(sortsAvoided)
 // clang-format on
 

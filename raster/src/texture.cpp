@@ -128,6 +128,7 @@ Texture2D Texture2D::build(uint32_t width, uint32_t height, Format format, std::
     t.levels_.push_back({int(width), int(height), 0});
     if (!mipmaps) {
         t.buildFootprints();
+        t.buildAlphaSpans();
         return t;
     }
 
@@ -269,6 +270,21 @@ glm::vec<4, Float8> Texture2D::sampleLanes(SamplerState s, glm::vec<2, Float8> u
         out.x.set(lane, c.x), out.y.set(lane, c.y), out.z.set(lane, c.z), out.w.set(lane, c.w);
     }
     return out;
+}
+
+void Texture2D::buildAlphaSpans() {
+    const Level& level = levels_[0];
+    alpha_spans_.assign(size_t(level.height), AlphaSpan{level.width, -1});
+    for (int y = 0; y < level.height; ++y) {
+        AlphaSpan& span = alpha_spans_[size_t(y)];
+        for (int x = 0; x < level.width; ++x) {
+            // `!(a == 0)`: NaN is not transparent.
+            if (!(texel<float>(level, x, y).w == 0.0f)) {
+                span.first = std::min(span.first, x);
+                span.last = x;
+            }
+        }
+    }
 }
 
 void Texture2D::buildFootprints() {

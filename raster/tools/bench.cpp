@@ -86,10 +86,12 @@ int bench(int argc, char** argv) {
     getrusage(RUSAGE_SELF, &usage);
     std::printf(
         "threads=%u reference=%d min_ms=%.3f max_ms=%.3f ps_invocations_per_frame=%llu "
-        "at_ceiling_per_frame=%llu rectangles_per_frame=%llu peak_rss_mb=%.1f\n",
+        "at_ceiling_per_frame=%llu transparent_skipped_per_frame=%llu rectangles_per_frame=%llu "
+        "peak_rss_mb=%.1f\n",
         context.threads(), int(reference), ms.front(), ms.back(),
         (unsigned long long)(stats.psInvocations / (frames + 1)),
         (unsigned long long)(stats.fragmentsBlendSaturated / (frames + 1)),
+        (unsigned long long)(stats.fragmentsTransparentSkipped / (frames + 1)),
         (unsigned long long)(stats.rectanglesRecognized / (frames + 1)), double(usage.ru_maxrss) / 1024.0);
     if (error && !reference) {
         Context ref_context({threads, true});

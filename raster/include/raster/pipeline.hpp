@@ -48,6 +48,7 @@
 #include "raster/stages/rasterizer.hpp"
 #include "raster/stages/setup.hpp"
 #include "raster/stages/trace_recorder.hpp"
+#include "raster/stages/transparency.hpp"
 #include "raster/stages/vertex_shader.hpp"
 #include "raster/states.hpp"
 #include "raster/statistics.hpp"

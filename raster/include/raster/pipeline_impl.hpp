@@ -476,6 +476,10 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
         else
             return false;
     }();
+    // Billboard pixels known to be transparent before shading are skipped (transparency.hpp).
+    constexpr bool kSkipTransparent = kWide && detail::kSkipsTransparent<PS, Depth, Color>;
+    [[maybe_unused]] detail::TransparentColumns transparent_columns;
+    if constexpr (kSkipTransparent) transparent_columns = detail::TransparentColumns(ps.alphaSource());
     const float min_depth = plan.viewport.minDepth, max_depth = plan.viewport.maxDepth;
     // One cache line or more per thread, so that the counters of two threads never share one.
     struct alignas(64) ThreadStatistics {
@@ -638,7 +642,8 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                 // shaded, their live lanes, their no-op lanes, lanes skipped at the blend's ceiling.
                 // Helpers = 8·blocks − live; lanes the early depth test killed = lanes of blocks
                 // taken whole − the lanes of those blocks that passed it.
-                uint64_t blocks = 0, live_lanes = 0, no_ops = 0, ceiling = 0, whole_lanes = 0, passed = 0;
+                uint64_t blocks = 0, live_lanes = 0, no_ops = 0, ceiling = 0, whole_lanes = 0, passed = 0,
+                         transparent = 0;
                 // attribute = (base + i·step_x) + j·step_y, the scalar path's order; j·step_y per row.
                 auto rowPart = [&](int32_t y, Float8 (&row_part)[kN]) {
                     const Float8 j = Float8(float(y - by)) + lane_y;
@@ -741,16 +746,46 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                         RASTER_DCHECK(n_blocks <= kMaxBlocks);
                         for (int k = 0; k < n_blocks; ++k)
                             columns[k] = uint8_t(blockColumns(bx0 + 4 * k, x0, x1));
-                        for (int32_t y = by0; y <= y1; y += 2) {
+                        // The blocks of each row pair that may not be transparent, [k_begin, k_end), found
+                        // for all row pairs before any is shaded: each is a chain of ~100 cycles of
+                        // latency (texel rows, spans, a quotient), which the shading loop would wait for
+                        // at every row pair, but whose row pairs are independent of each other here.
+                        constexpr int kMaxRowPairs = kTileSize / 2 + 1;
+                        [[maybe_unused]] uint8_t k_begins[kMaxRowPairs], k_ends[kMaxRowPairs];
+                        [[maybe_unused]] bool spans = false;
+                        if constexpr (kSkipTransparent) {
+                            const detail::TransparentColumns& tc = transparent_columns;
+                            const auto planes = tc.planes(base, step_x, step_y, r.box.x1 - bx + 1, r.box.y1 - by + 1);
+                            if (planes.usable) {
+                                RASTER_DCHECK((y1 - by0) / 2 + 1 <= kMaxRowPairs);
+                                spans = true;
+                                for (int32_t y = by0, p = 0; y <= y1; y += 2, ++p) {
+                                    int32_t lo, hi;
+                                    tc.rowPair(planes, y - by, x0 - bx, x1 - bx, lo, hi);
+                                    const int kb = lo > hi ? n_blocks : (lo + bx - bx0) >> 2;
+                                    const int ke = lo > hi ? n_blocks : ((hi + bx - bx0) >> 2) + 1;
+                                    k_begins[p] = uint8_t(kb), k_ends[p] = uint8_t(ke);
+                                    // The skipped blocks' lanes that pass the depth test, counted.
+                                    const uint32_t rows = (y >= y0 ? 0x0Fu : 0u) | (y + 1 <= y1 ? 0xF0u : 0u);
+                                    for (int s = 0; s < kb; ++s)
+                                        transparent += std::popcount(passing(bx0 + 4 * s, y, rows & columns[s]));
+                                    for (int s = std::max(kb, ke); s < n_blocks; ++s)
+                                        transparent += std::popcount(passing(bx0 + 4 * s, y, rows & columns[s]));
+                                }
+                            }
+                        }
+                        for (int32_t y = by0, p = 0; y <= y1; y += 2, ++p) {
                             // Lanes of the rectangle in this row pair: the top row (0x0F), the bottom (0xF0).
                             const uint32_t rows = (y >= y0 ? 0x0Fu : 0u) | (y + 1 <= y1 ? 0xF0u : 0u);
+                            int k = 0, k_end = n_blocks;
+                            if constexpr (kSkipTransparent)
+                                if (spans) k = k_begins[p], k_end = k_ends[p];
                             Float8 row_part[kN];
                             rowPart(y, row_part);
-                            int k = 0;
                             if constexpr (kPairs)
-                                for (; k + 1 < n_blocks; k += 2)
+                                for (; k + 1 < k_end; k += 2)
                                     shadePair(bx0 + 4 * k, y, rows & columns[k], rows & columns[k + 1], row_part);
-                            for (; k < n_blocks; ++k) shadeBlock(bx0 + 4 * k, y, rows & columns[k], row_part);
+                            for (; k < k_end; ++k) shadeBlock(bx0 + 4 * k, y, rows & columns[k], row_part);
                         }
                         whole_lanes += uint64_t(x1 - x0 + 1) * uint64_t(y1 - y0 + 1);
                         done = true;
@@ -794,6 +829,7 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                 st.fragmentsEarlyDepthKilled += whole_lanes - passed;
                 st.fragmentsBlendNoOp += no_ops;
                 st.fragmentsBlendSaturated += ceiling;
+                st.fragmentsTransparentSkipped += transparent;
             }
         };
 

@@ -236,6 +236,27 @@ concept PairPixelShader = WidePixelShader<PS> && requires { typename WidePair<Pi
                               { ps(in) } -> std::same_as<glm::vec<4, Float8x2>>;
                           };
 
+class Texture2D;
+struct SamplerState;
+
+// What a pixel shader may declare of its output's alpha, so that the pipeline can skip pixels it
+// would leave unchanged: `AlphaSource alphaSource() const` says that the output's alpha is exactly
+// zero wherever `texture`, read through `sampler`, has alpha zero in every texel that a Sample at
+// the input's float number `uvFloat` (u; v is the next float) may read. The lecture's psFire, which
+// returns the sample itself, is one (shaders/billboard.hpp). The pipeline then skips the blocks of a
+// billboard whose every pixel lies outside the texture's non-transparent columns (alphaSpans) under
+// a blend that adds nothing for alpha zero (the additive blend); see stages/transparency.hpp.
+// A shader that declares it falsely draws a wrong image, as one that returns a wrong colour would.
+struct AlphaSource {
+    const Texture2D* texture = nullptr;
+    const SamplerState* sampler = nullptr;
+    uint32_t uvFloat = 0;
+};
+template <class PS>
+concept AlphaSourcePixelShader = requires(const PS& ps) {
+    { ps.alphaSource() } -> std::same_as<AlphaSource>;
+};
+
 template <class VS>
 concept VertexShader = requires { typename VertexShaderInput<VS>; } && ShaderVertex<VertexShaderOutput<VS>> &&
                        requires { VertexShaderInput<VS>::inputSignature(); };

@@ -39,6 +39,10 @@ struct PipelineStatistics {
     uint64_t fragmentsBlendSaturated = 0;   // passed the depth test, but their 4×2 block was already at
                                             // the blend's ceiling (additive blend: every byte 255), which
                                             // no fragment can change: never shaded (eight-wide paths)
+    uint64_t fragmentsTransparentSkipped = 0;  // passed the depth test, but the shader's output there
+                                               // is known to be transparent (its texture's alpha is 0
+                                               // in the whole footprint) under a blend that adds
+                                               // nothing for it: never shaded (billboards, transparency.hpp)
     uint64_t fragmentsOverdrawSkipped = 0;  // passed the depth test, but a later fragment of the same
                                           // opaque draw replaced them before they were shaded: never
                                           // shaded (deferred shading, see Context::renderTiles)

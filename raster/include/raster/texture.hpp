@@ -130,6 +130,16 @@ class Texture2D {
     // HLSL SampleGrad: the level of detail from the given derivatives of uv, in uv units per pixel.
     glm::vec4 SampleGrad(const SamplerState& sampler, glm::vec2 uv, glm::vec2 ddx, glm::vec2 ddy) const;
 
+    // Where level 0 of a one-level texture is not transparent: per texel row (row 0 on top), the first
+    // and last column whose alpha is not zero (NaN counts as not zero); first > last for a row of
+    // alpha 0 only. Empty for a texture with mipmaps. Computed once at creation; what the pipeline
+    // reads to skip billboard pixels that sample only alpha-0 texels (AlphaSource, shader.hpp).
+    struct AlphaSpan {
+        int32_t first, last;
+        bool operator==(const AlphaSpan& other) const = default;
+    };
+    std::span<const AlphaSpan> alphaSpans() const { return alpha_spans_; }
+
     bool operator==(const Texture2D& other) const = default;
 
   private:
@@ -164,6 +174,8 @@ class Texture2D {
     static constexpr int kMaxFootprintSide = 512;
     void buildFootprints();
     std::vector<uint8_t> footprints_;
+    std::vector<AlphaSpan> alpha_spans_;
+    void buildAlphaSpans();
     // What the footprint path reads per call, each broadcast from memory in one instruction: the
     // pixel loop's stores to targets may alias the texture for all the compiler knows, so every
     // call reloads it (hence no level list to walk and no int-to-float conversions).

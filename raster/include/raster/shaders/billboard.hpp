@@ -7,6 +7,8 @@
 //   float4 psFire(GsosBillboard input) : SV_Target { return billboardTexture.Sample(ss, input.tex); }
 #pragma once
 
+#include <cstddef>
+
 #include <glm/glm.hpp>
 
 #include "raster/input_layout.hpp"
@@ -67,6 +69,11 @@ struct PsFire {
     template <class T>
     glm::vec<4, T> operator()(const BillboardCornerT<T>& in) const {
         return billboardTexture->Sample(sampler, in.tex);
+    }
+    // The output is the sample, so its alpha is zero where the texture's is (shader.hpp): the
+    // pipeline may skip a sprite's transparent corners.
+    AlphaSource alphaSource() const {
+        return {billboardTexture, &sampler, uint32_t(offsetof(BillboardCorner, tex) / sizeof(float))};
     }
 };
 

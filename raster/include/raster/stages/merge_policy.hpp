@@ -180,6 +180,9 @@ struct ColorFast {
     // adds non-negative units with unsigned saturation, so a pixel at 255 in all four bytes stays
     // there whatever the shader returns (NaN included: saturate makes it 0).
     static constexpr bool kCeiling = std::is_same_v<Blender, BlendAdditiveRgba8>;
+    // Whether a fragment of alpha 0 leaves the pixel as it is (the additive blend scales every
+    // channel by the source alpha): what the transparency skip needs (transparency.hpp).
+    static constexpr bool kAlphaZeroNoOp = std::is_same_v<Blender, BlendAdditiveRgba8>;
     // Whether all pixels of n side-by-side 4×2 blocks at (x, y) are at the ceiling (n = 1 or 2).
     template <int n>
     bool atCeiling(int32_t x, int32_t y) const {
@@ -273,6 +276,7 @@ struct ColorGeneric {
     // No ceiling: traced draws show every fragment, the reference skips none (atCeiling is only
     // called under `if constexpr (Color::kCeiling)`).
     static constexpr bool kCeiling = false;
+    static constexpr bool kAlphaZeroNoOp = false;
     uint32_t noOpWide(const glm::vec<4, Float8>&) const { return 0; }
     void writeWide(int32_t, int32_t, const glm::vec<4, Float8>&, uint32_t) const {}
     RenderTarget* const* targets;
@@ -307,6 +311,7 @@ struct ColorGeneric {
 struct ColorNone {  // no render target bound: a depth-only pass
     static constexpr bool kWide = true;
     static constexpr bool kCeiling = false;
+    static constexpr bool kAlphaZeroNoOp = false;
     uint32_t noOpWide(const glm::vec<4, Float8>&) const { return 0xFF; }
     void writeWide(int32_t, int32_t, const glm::vec<4, Float8>&, uint32_t) const {}
     template <class Colors>
