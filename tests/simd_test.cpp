@@ -332,15 +332,17 @@ TEST(Rectangles, TransparentPixelsAreSkippedWithTheSameImage) {
                         << what;
                     // Where nothing reaches the ceiling (which pairs blocks differently once some are
                     // skipped), every skipped fragment is one the full draw shades to a blend no-op.
-                    if (full_stats.fragmentsBlendSaturated == 0 && s.fragmentsBlendSaturated == 0)
+                    if (full_stats.fragmentsBlendSaturated == 0 && s.fragmentsBlendSaturated == 0) {
                         EXPECT_EQ(s.fragmentsBlendNoOp + s.fragmentsTransparentSkipped,
                                   full_stats.fragmentsBlendNoOp)
                             << what;
+                    }
                     EXPECT_EQ(s.fragmentsEarlyDepthKilled, full_stats.fragmentsEarlyDepthKilled) << what;
-                    if (sampler.addressU == AddressMode::Wrap)
+                    if (sampler.addressU == AddressMode::Wrap) {
                         EXPECT_EQ(s.fragmentsTransparentSkipped, 0u) << what;
-                    else  // every texture here has transparent rows or columns to skip
+                    } else {  // every texture here has transparent rows or columns to skip
                         EXPECT_GT(s.fragmentsTransparentSkipped, full_stats.psInvocations / 50) << what;
+                    }
                 }
             }
         }
