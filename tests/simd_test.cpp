@@ -368,8 +368,12 @@ TEST(TransparentColumns, RowIntervalHoldsEveryPixelThatMayBeVisible) {
         for (int trial = 0; trial < 300; ++trial) {
             const int w = 1 + int(rng() % 60), h = 1 + int(rng() % 60);
             // u from about −0.2 to 1.2 across the box, either way round.
-            const float span_u = float((unit(rng) * 1.4 + 0.1) * (rng() % 2 ? 1 : -1));
-            const float bu = float(span_u > 0 ? unit(rng) * 0.4 - 0.2 : 1.0 + unit(rng) * 0.4 - 0.2);
+            // Every tenth box has one u across it (a billboard seen edge-on would), exactly or nearly.
+            const float span_u = trial % 10 == 0   ? (trial % 20 == 0 ? 0.0f : 1e-9f)
+                                 : float((unit(rng) * 1.4 + 0.1) * (rng() % 2 ? 1 : -1));
+            const float bu = float(trial % 10 == 0 ? unit(rng) * 1.4 - 0.2
+                                   : span_u > 0    ? unit(rng) * 0.4 - 0.2
+                                                   : 1.0 + unit(rng) * 0.4 - 0.2);
             const float span_v = float(unit(rng) * 1.4 + 0.1);
             const float bv = float(unit(rng) * 0.4 - 0.2);
             float base[6] = {0, 0, 0, 1, bu, bv}, sx[6] = {}, sy[6] = {};

@@ -351,6 +351,45 @@ TEST(TextureSample, NanAndHugeCoordinatesStayInBounds) {
 
 // ---- Mip chain ----------------------------------------------------------------------------------------
 
+// Per texel row, the first and last column of non-zero alpha (NaN counts as non-zero), and the
+// union of any run of rows r0..r1 from alphaSpanOfRows, all against a brute-force scan: sizes with
+// and without a power of two of rows, rows transparent throughout, one-texel textures.
+TEST(TextureAlphaSpans, RowsAndEveryRunOfRowsMatchAScan) {
+    std::mt19937 rng(11);
+    for (const auto& [w, h] : {std::pair{1u, 1u}, {1u, 9u}, {9u, 1u}, {7u, 13u}, {16u, 16u}, {5u, 33u}, {64u, 64u}}) {
+        std::vector<float> rgba(size_t(w) * h * 4, 1.0f);
+        for (uint32_t y = 0; y < h; ++y) {
+            const bool clear_row = rng() % 4 == 0;
+            for (uint32_t x = 0; x < w; ++x) {
+                float& a = rgba[(size_t(y) * w + x) * 4 + 3];
+                const uint32_t pick = rng() % 8;
+                a = clear_row || pick < 5 ? 0.0f : pick == 5 ? std::nanf("") : 0.5f;
+            }
+        }
+        const Texture2D t = Texture2D::fromRgba32f(w, h, rgba, false);
+        ASSERT_EQ(t.alphaSpans().size(), size_t(h));
+        auto scan = [&](uint32_t r0, uint32_t r1) {
+            Texture2D::AlphaSpan s{int32_t(w), -1};
+            for (uint32_t y = r0; y <= r1; ++y)
+                for (uint32_t x = 0; x < w; ++x)
+                    if (!(rgba[(size_t(y) * w + x) * 4 + 3] == 0.0f))
+                        s.first = std::min(s.first, int32_t(x)), s.last = std::max(s.last, int32_t(x));
+            return s;
+        };
+        for (uint32_t y = 0; y < h; ++y) EXPECT_EQ(t.alphaSpans()[y], scan(y, y)) << w << "x" << h << " row " << y;
+        for (uint32_t r0 = 0; r0 < h; ++r0)
+            for (uint32_t r1 = r0; r1 < h; ++r1) {
+                const Texture2D::AlphaSpan got = t.alphaSpanOfRows(int32_t(r0), int32_t(r1)), want = scan(r0, r1);
+                ASSERT_EQ(got, want) << w << "x" << h << " rows " << r0 << ".." << r1 << ": " << got.first << ","
+                                     << got.last << " for " << want.first << "," << want.last;
+            }
+    }
+    // With mipmaps there are no spans.
+    const std::vector<uint8_t> texels(8 * 8 * 4, 255);
+    EXPECT_TRUE(Texture2D::fromRgba8(8, 8, texels, true).alphaSpans().empty());
+    EXPECT_EQ(Texture2D::fromRgba8(8, 8, texels, false).alphaSpanOfRows(0, 7), (Texture2D::AlphaSpan{0, 7}));
+}
+
 TEST(TextureMips, ChainSizesHalveDownToOneByOne) {
     const Texture2D a = Texture2D::fromRgba8(8, 4, scrambledBytes(8 * 4 * 4), true);
     ASSERT_EQ(a.mipLevels(), 4u);

@@ -285,6 +285,16 @@ void Texture2D::buildAlphaSpans() {
             }
         }
     }
+    // Level k, row r: the union of rows r .. r + 2^k − 1 (those that exist), from two of level k − 1.
+    for (int k = 1; (1 << k) <= level.height; ++k) {
+        const size_t h = size_t(level.height), previous = size_t(k - 1) * h, half = size_t(1) << (k - 1);
+        alpha_spans_.resize(size_t(k + 1) * h);
+        for (size_t r = 0; r < h; ++r) {
+            const AlphaSpan a = alpha_spans_[previous + r];
+            const AlphaSpan b = r + half < h ? alpha_spans_[previous + r + half] : a;
+            alpha_spans_[previous + h + r] = {std::min(a.first, b.first), std::max(a.last, b.last)};
+        }
+    }
 }
 
 void Texture2D::buildFootprints() {

@@ -767,10 +767,12 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                                     k_begins[p] = uint8_t(kb), k_ends[p] = uint8_t(ke);
                                     // The skipped blocks' lanes that pass the depth test, counted.
                                     const uint32_t rows = (y >= y0 ? 0x0Fu : 0u) | (y + 1 <= y1 ? 0xF0u : 0u);
-                                    for (int s = 0; s < kb; ++s)
-                                        transparent += std::popcount(passing(bx0 + 4 * s, y, rows & columns[s]));
-                                    for (int s = std::max(kb, ke); s < n_blocks; ++s)
-                                        transparent += std::popcount(passing(bx0 + 4 * s, y, rows & columns[s]));
+                                    auto count = [&](int s0, int s1) {
+                                        for (int s = s0; s < s1; ++s)
+                                            transparent += std::popcount(passing(bx0 + 4 * s, y, rows & columns[s]));
+                                    };
+                                    count(0, kb);
+                                    count(std::max(kb, ke), n_blocks);
                                 }
                             }
                         }

@@ -49,6 +49,7 @@
 #pragma once
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -138,7 +139,19 @@ class Texture2D {
         int32_t first, last;
         bool operator==(const AlphaSpan& other) const = default;
     };
-    std::span<const AlphaSpan> alphaSpans() const { return alpha_spans_; }
+    std::span<const AlphaSpan> alphaSpans() const {
+        return std::span<const AlphaSpan>(alpha_spans_).first(alpha_spans_.empty() ? 0 : levels_[0].height);
+    }
+    // The union of rows r0..r1's spans (0 ≤ r0 ≤ r1 < height, alphaSpans not empty): the least first
+    // and the greatest last. Two reads of a table of the unions of 2^k rows, k = ⌊log2(r1 − r0 + 1)⌋,
+    // made with the spans (a sparse table: height · (⌊log2 height⌋ + 1) entries).
+    AlphaSpan alphaSpanOfRows(int32_t r0, int32_t r1) const {
+        const int32_t h = levels_[0].height;
+        const int k = std::bit_width(uint32_t(r1 - r0 + 1)) - 1;
+        const AlphaSpan& a = alpha_spans_[size_t(k) * size_t(h) + size_t(r0)];
+        const AlphaSpan& b = alpha_spans_[size_t(k) * size_t(h) + size_t(r1 - (int32_t(1) << k) + 1)];
+        return {std::min(a.first, b.first), std::max(a.last, b.last)};
+    }
 
     bool operator==(const Texture2D& other) const = default;
 
@@ -174,7 +187,7 @@ class Texture2D {
     static constexpr int kMaxFootprintSide = 512;
     void buildFootprints();
     std::vector<uint8_t> footprints_;
-    std::vector<AlphaSpan> alpha_spans_;
+    std::vector<AlphaSpan> alpha_spans_;  // the rows' spans, then the unions of 2, 4, 8… rows
     void buildAlphaSpans();
     // What the footprint path reads per call, each broadcast from memory in one instruction: the
     // pixel loop's stores to targets may alias the texture for all the compiler knows, so every

@@ -43,76 +43,79 @@ class TransparentColumns {
             s.addressV != AddressMode::Clamp)
             return;
         if (int64_t(t.width()) > kMaxSide || int64_t(t.height()) > kMaxSide) return;
-        spans_ = t.alphaSpans();
+        if (t.alphaSpans().empty()) return;
+        texture_ = &t;
         width_ = int32_t(t.width());
         height_ = int32_t(t.height());
         u_float_ = source.uvFloat;
     }
-    bool enabled() const { return !spans_.empty(); }
+    bool enabled() const { return texture_ != nullptr; }
     uint32_t uvFloat() const { return u_float_; }
 
-    // One rectangle's texture coordinate planes: u = bu + i·su, v = bv + j·sv for the pixel i
-    // columns right of and j rows below the box's top-left one.
+    // One rectangle's planes in texel coordinates: the sampler's a = u·W − 0.5 and b = v·H − 0.5 at
+    // the pixel i columns right of and j rows below the box's top-left one are a0 + i·sa and
+    // b0 + j·sb (in double, a few 1e−13 texel from the same products of the float planes).
     struct Planes {
         bool usable = false;
-        double bu = 0, su = 0, bv = 0, sv = 0;
-        double inv_su = 0;  // 1 / su, or 0; a product instead of a quotient per row pair
+        bool constant_u = false;  // |sa| ≤ kFlat: a is a0 across the box, to well within kMargin
+        double a0 = 0, sa = 0, b0 = 0, sb = 0;
+        double inv_sa = 0;  // 1 / sa unless constant_u: a product instead of a quotient per row pair
+        // Bounds of a beyond every a in the box (|u| ≤ kMaxCoord), for a side the clamp reaches.
+        double a_below = 0, a_above = 0;
     };
+    static constexpr double kFlat = 1e-12;  // texels per pixel
     // `base`, `step_x`, `step_y`: the rectangle's attribute planes (RectSetup); w, h its box's size.
     Planes planes(const float* base, const float* step_x, const float* step_y, int32_t w, int32_t h) const {
         Planes p;
         const uint32_t ku = u_float_, kv = u_float_ + 1;
         if (!enabled() || step_y[ku] != 0.0f || step_x[kv] != 0.0f) return p;
-        p.bu = base[ku], p.su = step_x[ku], p.bv = base[kv], p.sv = step_y[kv];
+        const double bu = base[ku], su = step_x[ku], bv = base[kv], sv = step_y[kv];
         // NaN fails every comparison, so non-finite planes are rejected here too.
         auto small = [](double a) { return std::abs(a) <= kMaxCoord; };
-        p.usable = small(p.bu) && small(p.bu + p.su * w) && small(p.bv) && small(p.bv + p.sv * h);
-        if (p.su != 0) p.inv_su = 1.0 / p.su;
+        p.usable = small(bu) && small(bu + su * w) && small(bv) && small(bv + sv * h);
+        if (!p.usable) return p;
+        const double tw = width_, th = height_;
+        p.a0 = bu * tw - 0.5, p.sa = su * tw, p.b0 = bv * th - 0.5, p.sb = sv * th;
+        p.constant_u = std::abs(p.sa) <= kFlat;
+        if (!p.constant_u) p.inv_sa = 1.0 / p.sa;
+        p.a_below = -(kMaxCoord + 1.0) * tw, p.a_above = (kMaxCoord + 1.0) * tw;
         return p;
     }
 
     // The pixels of the row pair j, j + 1 that may not be transparent: i in [lo, hi], within
-    // [i_min, i_max] (the part of the rectangle being drawn). lo > hi: none.
+    // [i_min, i_max] (the part of the rectangle being drawn). lo > hi: none. No division and no
+    // loop: the row pair's texel rows' spans in one query (Texture2D::alphaSpanOfRows).
     void rowPair(const Planes& p, int32_t j, int32_t i_min, int32_t i_max, int32_t& lo, int32_t& hi) const {
         lo = i_min, hi = i_max;
         if (!p.usable) return;
-        // Texel rows: a footprint reads rows floor(b) and floor(b) + 1, b = v·H − 0.5, clamped.
-        const double v0 = p.bv + p.sv * j, v1 = p.bv + p.sv * (j + 1);
-        const double h = height_;
-        const double b_lo = std::min(v0, v1) * h - 0.5 - kMargin, b_hi = std::max(v0, v1) * h - 0.5 + kMargin;
+        // Texel rows: a footprint reads rows floor(b) and floor(b) + 1, clamped.
+        const double b_top = p.b0 + p.sb * j, b_bottom = b_top + p.sb;
+        const double b_lo = std::min(b_top, b_bottom) - kMargin, b_hi = std::max(b_top, b_bottom) + kMargin;
         const int32_t r0 = std::clamp(int32_t(std::floor(b_lo)), 0, height_ - 1);
         const int32_t r1 = std::clamp(int32_t(std::floor(b_hi)) + 1, 0, height_ - 1);
-        int32_t first = width_, last = -1;
-        for (int32_t r = r0; r <= r1; ++r) {
-            first = std::min(first, spans_[size_t(r)].first);
-            last = std::max(last, spans_[size_t(r)].last);
-        }
-        if (first > last) {
+        const Texture2D::AlphaSpan span = texture_->alphaSpanOfRows(r0, r1);
+        if (span.first > span.last) {
             lo = i_min, hi = i_min - 1;
             return;
         }
-        // Texel columns: floor(a) and floor(a) + 1, a = u·W − 0.5, clamped; one of them in
-        // [first, last] needs a ≥ first − 1 and a < last + 1 (no bound at a side the clamp reaches).
-        const double w = width_;
-        const double u_lo = first == 0 ? -kMaxCoord - 1.0 : (first - 1 - kMargin + 0.5) / w;
-        const double u_hi = last == width_ - 1 ? kMaxCoord + 1.0 : (last + 1 + kMargin + 0.5) / w;
-        double i0, i1;
-        if (p.su > 0) {
-            i0 = std::ceil((u_lo - p.bu) * p.inv_su), i1 = std::floor((u_hi - p.bu) * p.inv_su);
-        } else if (p.su < 0) {
-            i0 = std::ceil((u_hi - p.bu) * p.inv_su), i1 = std::floor((u_lo - p.bu) * p.inv_su);
-        } else {
-            if (p.bu >= u_lo && p.bu <= u_hi) return;
-            lo = i_min, hi = i_min - 1;
+        // Texel columns: floor(a) and floor(a) + 1, clamped; one of them in [first, last] needs
+        // a ≥ first − 1 and a < last + 1 (no bound at a side the clamp reaches).
+        const double a_lo = span.first == 0 ? p.a_below : span.first - 1 - kMargin;
+        const double a_hi = span.last == width_ - 1 ? p.a_above : span.last + 1 + kMargin;
+        if (p.constant_u) {
+            if (!(p.a0 >= a_lo && p.a0 <= a_hi)) lo = i_min, hi = i_min - 1;
             return;
         }
+        // The columns where a0 + i·sa lies in [a_lo, a_hi], for either sign of sa.
+        const double t_lo = (a_lo - p.a0) * p.inv_sa, t_hi = (a_hi - p.a0) * p.inv_sa;
+        const double i0 = std::ceil(std::min(t_lo, t_hi)), i1 = std::floor(std::max(t_lo, t_hi));
         // Clamped in double first: the quotients may be far outside int32_t.
         lo = int32_t(std::clamp(i0, double(i_min), double(i_max) + 1.0));
         hi = int32_t(std::clamp(i1, double(i_min) - 1.0, double(i_max)));
     }
 
   private:
-    std::span<const Texture2D::AlphaSpan> spans_;
+    const Texture2D* texture_ = nullptr;
     int32_t width_ = 0, height_ = 0;
     uint32_t u_float_ = 0;
 };
