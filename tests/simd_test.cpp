@@ -423,6 +423,48 @@ TEST(TransparentColumns, RowIntervalHoldsEveryPixelThatMayBeVisible) {
     EXPECT_FALSE(detail::TransparentColumns(AlphaSource{&mipmapped, &clamp, 4}).enabled());
 }
 
+// The four-at-a-time intervals (rowPairs) are rowPair's, value for value: random planes of both
+// signs, boxes cut to parts of themselves, any count of row pairs (a partial last group of four),
+// row pairs starting above the box, planes with one u across the box, and unusable ones.
+TEST(TransparentColumns, RowPairsGiveRowPairsIntervals) {
+    const std::vector<Texture2D> textures = transparencyTextures();
+    std::mt19937 rng(17);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    uint64_t compared = 0, empty = 0, cut = 0;
+    for (const Texture2D& tex : textures) {
+        const SamplerState sampler = SamplerState::bilinear(AddressMode::Clamp);
+        const detail::TransparentColumns columns(AlphaSource{&tex, &sampler, 4});
+        for (int trial = 0; trial < 400; ++trial) {
+            const int w = 1 + int(rng() % 70), h = 1 + int(rng() % 70);
+            const float span_u = trial % 13 == 0 ? 0.0f : float((unit(rng) * 3.0 - 1.5));
+            const float span_v = float(unit(rng) * 3.0 - 1.5);
+            float base[6] = {0, 0, 0, 1, float(unit(rng) * 2.0 - 0.5), float(unit(rng) * 2.0 - 0.5)};
+            float sx[6] = {}, sy[6] = {};
+            sx[4] = span_u / float(w), sy[5] = span_v / float(h);
+            if (trial % 17 == 0) base[4] = 50.0f;  // not usable: every pixel may be visible
+            const auto planes = columns.planes(base, sx, sy, w, h);
+            const int32_t i_min = int32_t(rng() % uint32_t(w)), i_max = i_min + int32_t(rng() % uint32_t(w - i_min));
+            const int32_t j0 = int32_t(rng() % uint32_t(h)) - 1;
+            const int n = 1 + int(rng() % 33);
+            std::vector<int32_t> lo(size_t(n), -7), hi(size_t(n), -7);
+            columns.rowPairs(planes, j0, n, i_min, i_max, lo.data(), hi.data());
+            for (int q = 0; q < n; ++q) {
+                int32_t l, r;
+                columns.rowPair(planes, j0 + 2 * q, i_min, i_max, l, r);
+                ASSERT_EQ(lo[size_t(q)], l) << "row pair " << j0 + 2 * q << " trial " << trial;
+                ASSERT_EQ(hi[size_t(q)], r) << "row pair " << j0 + 2 * q << " trial " << trial;
+                ++compared;
+                empty += l > r;
+                cut += l <= r && (l > i_min || r < i_max);
+            }
+        }
+    }
+    // The cases that matter occurred: row pairs with nothing to shade and row pairs cut at either end.
+    EXPECT_GT(compared, 10000u);
+    EXPECT_GT(empty, 500u);
+    EXPECT_GT(cut, 1000u);
+}
+
 // A read-only depth draw skips the per-block test where a rectangle lies in front of the tile's
 // nearest stored depth. Stored NaN (fails every test) and nearer depths must still refuse their
 // fragments: the image equals the scalar path's, which tests every pixel.

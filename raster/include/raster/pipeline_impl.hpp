@@ -747,9 +747,9 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                         for (int k = 0; k < n_blocks; ++k)
                             columns[k] = uint8_t(blockColumns(bx0 + 4 * k, x0, x1));
                         // The blocks of each row pair that may not be transparent, [k_begin, k_end), found
-                        // for all row pairs before any is shaded: each is a chain of ~100 cycles of
-                        // latency (texel rows, spans, a quotient), which the shading loop would wait for
-                        // at every row pair, but whose row pairs are independent of each other here.
+                        // for all row pairs before any is shaded (four at a time, TransparentColumns::
+                        // rowPairs): each is a chain of dependent operations (texel rows, spans, columns)
+                        // that the shading loop would wait for at every row pair.
                         constexpr int kMaxRowPairs = kTileSize / 2 + 1;
                         [[maybe_unused]] uint8_t k_begins[kMaxRowPairs], k_ends[kMaxRowPairs];
                         [[maybe_unused]] bool spans = false;
@@ -757,11 +757,13 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                             const detail::TransparentColumns& tc = transparent_columns;
                             const auto planes = tc.planes(base, step_x, step_y, r.box.x1 - bx + 1, r.box.y1 - by + 1);
                             if (planes.usable) {
-                                RASTER_DCHECK((y1 - by0) / 2 + 1 <= kMaxRowPairs);
+                                const int n_pairs = (y1 - by0) / 2 + 1;
+                                RASTER_DCHECK(n_pairs <= kMaxRowPairs);
                                 spans = true;
+                                int32_t los[kMaxRowPairs], his[kMaxRowPairs];
+                                tc.rowPairs(planes, by0 - by, n_pairs, x0 - bx, x1 - bx, los, his);
                                 for (int32_t y = by0, p = 0; y <= y1; y += 2, ++p) {
-                                    int32_t lo, hi;
-                                    tc.rowPair(planes, y - by, x0 - bx, x1 - bx, lo, hi);
+                                    const int32_t lo = los[p], hi = his[p];
                                     const int kb = lo > hi ? n_blocks : (lo + bx - bx0) >> 2;
                                     const int ke = lo > hi ? n_blocks : ((hi + bx - bx0) >> 2) + 1;
                                     k_begins[p] = uint8_t(kb), k_ends[p] = uint8_t(ke);

@@ -145,6 +145,8 @@ class Texture2D {
     // The union of rows r0..r1's spans (0 ≤ r0 ≤ r1 < height, alphaSpans not empty): the least first
     // and the greatest last. Two reads of a table of the unions of 2^k rows, k = ⌊log2(r1 − r0 + 1)⌋,
     // made with the spans (a sparse table: height · (⌊log2 height⌋ + 1) entries).
+    // The table itself: level k (rows' unions of 2^k) at entries k·height .. k·height + height − 1.
+    std::span<const AlphaSpan> alphaSpanTable() const { return alpha_spans_; }
     AlphaSpan alphaSpanOfRows(int32_t r0, int32_t r1) const {
         const int32_t h = levels_[0].height;
         const int k = std::bit_width(uint32_t(r1 - r0 + 1)) - 1;
