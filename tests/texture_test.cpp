@@ -351,6 +351,20 @@ TEST(TextureSample, NanAndHugeCoordinatesStayInBounds) {
 
 // ---- Mip chain ----------------------------------------------------------------------------------------
 
+// The union of two rows' spans, as the sparse table and its queries take it: the least first and
+// the greatest last, so that a row of alpha 0 only (first > last, as {width, −1}) adds nothing.
+TEST(TextureAlphaSpans, UniteTakesTheLeastFirstAndTheGreatestLast) {
+    using Span = Texture2D::AlphaSpan;
+    EXPECT_EQ((Span{3, 9}.unite(Span{5, 12})), (Span{3, 12}));
+    EXPECT_EQ((Span{5, 12}.unite(Span{3, 9})), (Span{3, 12}));
+    EXPECT_EQ((Span{4, 6}.unite(Span{0, 63})), (Span{0, 63}));
+    const Span clear{64, -1};
+    EXPECT_EQ(clear.unite(Span{7, 8}), (Span{7, 8}));
+    EXPECT_EQ((Span{7, 8}.unite(clear)), (Span{7, 8}));
+    const Span both_clear = clear.unite(clear);
+    EXPECT_GT(both_clear.first, both_clear.last);
+}
+
 // Per texel row, the first and last column of non-zero alpha (NaN counts as non-zero), and the
 // union of any run of rows r0..r1 from alphaSpanOfRows, all against a brute-force scan: sizes with
 // and without a power of two of rows, rows transparent throughout, one-texel textures.

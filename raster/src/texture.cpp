@@ -292,7 +292,7 @@ void Texture2D::buildAlphaSpans() {
         for (size_t r = 0; r < h; ++r) {
             const AlphaSpan a = alpha_spans_[previous + r];
             const AlphaSpan b = r + half < h ? alpha_spans_[previous + r + half] : a;
-            alpha_spans_[previous + h + r] = {std::min(a.first, b.first), std::max(a.last, b.last)};
+            alpha_spans_[previous + h + r] = a.unite(b);
         }
     }
 }

@@ -137,6 +137,10 @@ class Texture2D {
     // reads to skip billboard pixels that sample only alpha-0 texels (AlphaSource, shader.hpp).
     struct AlphaSpan {
         int32_t first, last;
+        // The span of both rows: the least first and the greatest last.
+        AlphaSpan unite(const AlphaSpan& other) const {
+            return {std::min(first, other.first), std::max(last, other.last)};
+        }
         bool operator==(const AlphaSpan& other) const = default;
     };
     std::span<const AlphaSpan> alphaSpans() const {
@@ -151,8 +155,7 @@ class Texture2D {
         const int32_t h = levels_[0].height;
         const int k = std::bit_width(uint32_t(r1 - r0 + 1)) - 1;
         const AlphaSpan& a = alpha_spans_[size_t(k) * size_t(h) + size_t(r0)];
-        const AlphaSpan& b = alpha_spans_[size_t(k) * size_t(h) + size_t(r1 - (int32_t(1) << k) + 1)];
-        return {std::min(a.first, b.first), std::max(a.last, b.last)};
+        return a.unite(alpha_spans_[size_t(k) * size_t(h) + size_t(r1 - (int32_t(1) << k) + 1)]);
     }
 
     bool operator==(const Texture2D& other) const = default;

@@ -49,6 +49,7 @@ class TransparentColumns {
         width_ = int32_t(t.width());
         height_ = int32_t(t.height());
         u_float_ = source.uvFloat;
+        a_below_ = -(kMaxCoord + 1.0) * double(width_), a_above_ = (kMaxCoord + 1.0) * double(width_);
     }
     bool enabled() const { return texture_ != nullptr; }
     uint32_t uvFloat() const { return u_float_; }
@@ -79,7 +80,7 @@ class TransparentColumns {
         p.a0 = bu * tw - 0.5, p.sa = su * tw, p.b0 = bv * th - 0.5, p.sb = sv * th;
         p.constant_u = std::abs(p.sa) <= kFlat;
         if (!p.constant_u) p.inv_sa = 1.0 / p.sa;
-        p.a_below = -(kMaxCoord + 1.0) * tw, p.a_above = (kMaxCoord + 1.0) * tw;
+        p.a_below = a_below_, p.a_above = a_above_;
         return p;
     }
 
@@ -188,6 +189,7 @@ class TransparentColumns {
     const Texture2D* texture_ = nullptr;
     int32_t width_ = 0, height_ = 0;
     uint32_t u_float_ = 0;
+    double a_below_ = 0, a_above_ = 0;  // Planes::a_below, a_above: the texture's alone
 };
 
 // The transparency skip for a draw: an AlphaSource shader, a blend for which alpha 0 is a no-op,
