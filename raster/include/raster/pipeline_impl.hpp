@@ -638,262 +638,275 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
         // in_front: the rectangle passes the depth test in every pixel of the tile (inFrontInTile).
         // A copy of the loop each way (one function, flattened: a template lambda of its own was not
         // inlined whole): in front, a block has no depth test and its lanes need no counting (they
-        // all pass; the shaded ones are what the skips leave), which measured ~5 % of the 100 000-
+        // all pass; the shaded ones are what the skips leave), which measured 4–6 % of the 100 000-
         // particle frame as per-block popcounts (PERFORMANCE.md).
         [[maybe_unused]] auto shadeRectWide = [&](const RectSetup& r, const float* base, const float* step_x,
                                                   const float* step_y, Real z, bool in_front) RASTER_FLATTEN {
             auto loop = [&]<class InFront>(InFront) {
-            if constexpr (kWide) {
-                // Every lane of the rectangle in the tile passes the depth test.
-                constexpr bool kAllPass = InFront::value || !(Depth::kEnabled && Depth::kWide);
-                constexpr uint32_t kN = kVertexFloats<V>;
-                // What every block reads, in locals: the targets are written through uint8_t and float
-                // pointers, which may alias anything, so through `rect`, `base` or `depth` the compiler
-                // would load it again for every block.
-                const PixelRect tile = rect;
-                [[maybe_unused]] const Depth depth_here = depth;
-                [[maybe_unused]] const Color color_here = color;
-                // The shader too: its texture pointer and sampler then stay in registers.
-                const auto shader_here = wide_shader;
-                const int32_t x0 = std::max(r.box.x0, tile.x0), x1 = std::min(r.box.x1, tile.x1);
-                const int32_t y0 = std::max(r.box.y0, tile.y0), y1 = std::min(r.box.y1, tile.y1);
-                const int32_t bx = r.box.x0, by = r.box.y0;
-                Float8 plane[kN], plane_x[kN], plane_y[kN];
-                for (uint32_t k = 0; k < kN; ++k)
-                    plane[k] = Float8(base[k]), plane_x[k] = Float8(step_x[k]), plane_y[k] = Float8(step_y[k]);
-                const Float8 lane_x(simd::F32x8{0, 1, 2, 3, 0, 1, 2, 3});
-                const Float8 lane_y(simd::F32x8{0, 0, 0, 0, 1, 1, 1, 1});
-                const Float8 z8 = Float8(float(z));
-                // Statistics in locals, per block only what cannot be counted per rectangle: blocks
-                // shaded, their live lanes, their no-op lanes, lanes skipped at the blend's ceiling.
-                // Helpers = 8·blocks − live; lanes the early depth test killed = lanes of blocks
-                // taken whole − the lanes of those blocks that passed it. With kAllPass every lane
-                // of a block taken whole passes, and the live lanes of the shaded ones are the rest
-                // after the transparent and ceiling skips: neither is counted per block.
-                uint64_t blocks = 0, live_lanes = 0, no_ops = 0, ceiling = 0, whole_lanes = 0, passed = 0,
-                         transparent = 0;
-                // attribute = (base + i·step_x) + j·step_y, the scalar path's order; j·step_y per row.
-                auto rowPart = [&](int32_t y, Float8 (&row_part)[kN]) {
-                    const Float8 j = Float8(float(y - by)) + lane_y;
-                    for (uint32_t k = 0; k < kN; ++k) row_part[k] = j * plane_y[k];
-                };
-                auto inputs = [&](int32_t x, const Float8 (&row_part)[kN]) {
-                    const Float8 i = Float8(float(x - bx)) + lane_x;
-                    Float8 f[kN];
-                    for (uint32_t k = 0; k < kN; ++k) f[k] = plane[k] + i * plane_x[k] + row_part[k];
-                    Wide<V> in;
-                    static_assert(sizeof in == sizeof f);
-                    std::memcpy(static_cast<void*>(&in), f, sizeof f);
-                    return in;
-                };
-                // A shaded block's live lanes into depth and colour, counted (targets with an
-                // eight-wide merge only).
-                [[maybe_unused]] auto mergeBlock = [&](int32_t x, int32_t y, const glm::vec<4, Float8>& c,
-                                                       uint32_t live) {
-                    if constexpr (Depth::kWide && Color::kWide) {
-                        if constexpr (!kAllPass) live_lanes += uint64_t(std::popcount(live));
-                        depth_here.writeWide(x, y, z8, live);
-                        no_ops += uint64_t(std::popcount(color_here.noOpWide(c) & live));
-                        // Every block is written, no-op lanes too (they add zero): a block wholly inside
-                        // the rectangle is then stored without a lane select, and a block whose lanes
-                        // are all no-ops (texels of alpha 0, a third of the particle scene's) costs a
-                        // blend, not the mispredicted branch that skipped it (PERFORMANCE.md: −3 %).
-                        color_here.writeWide(x, y, c, live);
-                    }
-                };
-                // The lanes of a block inside the tile in `covered` that pass the depth test, counted.
-                // Without kAllPass, whether the row pair being shaded is in front of its pixels
-                // (inFrontInRows); false where row pairs are not looked up.
-                [[maybe_unused]] bool rows_in_front = false;
-                [[maybe_unused]] auto passing = [&](int32_t x, int32_t y, uint32_t covered) -> uint32_t {
-                    uint32_t live = covered;
-                    if constexpr (!kAllPass) {
-                        if (!rows_in_front) live &= depth_here.testWide(x, y, z8);
-                        passed += uint64_t(std::popcount(live));
-                    }
-                    return live;
-                };
-                // Blocks whose pixels are all at the blend's ceiling are not shaded, their live lanes
-                // counted. Why: dense additive particles saturate the middle of the cloud, and every
-                // fragment after that changes nothing (100 000 particles at 1080p: 11 % of the
-                // fragments; PERFORMANCE.md). Tested after depth, so that the counts add up to the
-                // traced draw's, which shades every fragment.
-                [[maybe_unused]] auto skipped = [&](bool at_ceiling, uint32_t lanes) {
-                    if (at_ceiling) ceiling += uint64_t(std::popcount(lanes));
-                    return at_ceiling;
-                };
-                // One block inside the tile whose live lanes are known: shaded and merged unless at the
-                // ceiling.
-                [[maybe_unused]] auto shadeLive = [&](int32_t x, int32_t y, uint32_t live,
-                                                      const Float8(&row_part)[kN]) {
-                    if constexpr (Depth::kWide && Color::kWide) {
-                        if constexpr (Color::kCeiling)
-                            if (skipped(color_here.template atCeiling<1>(x, y), live)) return;
-                        ++blocks;
-                        mergeBlock(x, y, shader_here(inputs(x, row_part)), live);
-                    }
-                };
-                // One block inside the tile through depth, shader and blend at once, its lanes outside
-                // the rectangle (not in `covered`) masked off.
-                [[maybe_unused]] auto shadeBlock = [&](int32_t x, int32_t y, uint32_t covered,
-                                                       const Float8(&row_part)[kN]) {
-                    if (const uint32_t live = passing(x, y, covered)) shadeLive(x, y, live, row_part);
-                };
-                // Blocks x and x + 4 of a row pair inside the tile through one Float8x2 call when both
-                // have live lanes (else each alone); the same bits as shadeBlock on each. Why: a
-                // block's texture fetch is one long dependency chain, and two of them interleaved keep
-                // the core busy where one leaves it waiting (PERFORMANCE.md).
-                [[maybe_unused]] auto shadePair = [&](int32_t x, int32_t y, uint32_t covered0, uint32_t covered1,
-                                                      const Float8 (&row_part)[kN]) {
-                    if constexpr (Depth::kWide && Color::kWide && kPairs) {
-                        const uint32_t live0 = passing(x, y, covered0), live1 = passing(x + 4, y, covered1);
-                        if (!live0 || !live1) {
-                            if (live0) shadeLive(x, y, live0, row_part);
-                            if (live1) shadeLive(x + 4, y, live1, row_part);
-                            return;
+                if constexpr (kWide) {
+                    // Every lane of the rectangle in the tile passes the depth test.
+                    constexpr bool kAllPass = InFront::value || !(Depth::kEnabled && Depth::kWide);
+                    constexpr uint32_t kN = kVertexFloats<V>;
+                    // What every block reads, in locals: the targets are written through uint8_t and float
+                    // pointers, which may alias anything, so through `rect`, `base` or `depth` the compiler
+                    // would load it again for every block.
+                    const PixelRect tile = rect;
+                    [[maybe_unused]] const Depth depth_here = depth;
+                    [[maybe_unused]] const Color color_here = color;
+                    // The shader too: its texture pointer and sampler then stay in registers.
+                    const auto shader_here = wide_shader;
+                    const int32_t x0 = std::max(r.box.x0, tile.x0), x1 = std::min(r.box.x1, tile.x1);
+                    const int32_t y0 = std::max(r.box.y0, tile.y0), y1 = std::min(r.box.y1, tile.y1);
+                    const int32_t bx = r.box.x0, by = r.box.y0;
+                    Float8 plane[kN], plane_x[kN], plane_y[kN];
+                    for (uint32_t k = 0; k < kN; ++k)
+                        plane[k] = Float8(base[k]), plane_x[k] = Float8(step_x[k]),
+                        plane_y[k] = Float8(step_y[k]);
+                    const Float8 lane_x(simd::F32x8{0, 1, 2, 3, 0, 1, 2, 3});
+                    const Float8 lane_y(simd::F32x8{0, 0, 0, 0, 1, 1, 1, 1});
+                    const Float8 z8 = Float8(float(z));
+                    // Statistics in locals, per block only what cannot be counted per rectangle: blocks
+                    // shaded, their live lanes, their no-op lanes, lanes skipped at the blend's ceiling.
+                    // Helpers = 8·blocks − live; lanes the early depth test killed = lanes of blocks
+                    // taken whole − the lanes of those blocks that passed it. With kAllPass every lane
+                    // of a block taken whole passes, and the live lanes of the shaded ones are the rest
+                    // after the transparent and ceiling skips: neither is counted per block.
+                    uint64_t blocks = 0, live_lanes = 0, no_ops = 0, ceiling = 0, whole_lanes = 0, passed = 0,
+                             transparent = 0;
+                    // attribute = (base + i·step_x) + j·step_y, the scalar path's order; j·step_y per row.
+                    auto rowPart = [&](int32_t y, Float8(&row_part)[kN]) {
+                        const Float8 j = Float8(float(y - by)) + lane_y;
+                        for (uint32_t k = 0; k < kN; ++k) row_part[k] = j * plane_y[k];
+                    };
+                    auto inputs = [&](int32_t x, const Float8(&row_part)[kN]) {
+                        const Float8 i = Float8(float(x - bx)) + lane_x;
+                        Float8 f[kN];
+                        for (uint32_t k = 0; k < kN; ++k) f[k] = plane[k] + i * plane_x[k] + row_part[k];
+                        Wide<V> in;
+                        static_assert(sizeof in == sizeof f);
+                        std::memcpy(static_cast<void*>(&in), f, sizeof f);
+                        return in;
+                    };
+                    // A shaded block's live lanes into depth and colour, counted (targets with an
+                    // eight-wide merge only).
+                    [[maybe_unused]] auto mergeBlock = [&](int32_t x, int32_t y, const glm::vec<4, Float8>& c,
+                                                           uint32_t live) {
+                        if constexpr (Depth::kWide && Color::kWide) {
+                            if constexpr (!kAllPass) live_lanes += uint64_t(std::popcount(live));
+                            depth_here.writeWide(x, y, z8, live);
+                            no_ops += uint64_t(std::popcount(color_here.noOpWide(c) & live));
+                            // Every block is written, no-op lanes too (they add zero): a block wholly inside
+                            // the rectangle is then stored without a lane select, and a block whose lanes
+                            // are all no-ops (texels of alpha 0, a third of the particle scene's) costs a
+                            // blend, not the mispredicted branch that skipped it (PERFORMANCE.md: −3 %).
+                            color_here.writeWide(x, y, c, live);
                         }
-                        // Both blocks at once (one branch, not two): a pair with one block at the ceiling
-                        // is shaded whole, which stores that block unchanged.
-                        if constexpr (Color::kCeiling)
-                            if (skipped(color_here.template atCeiling<2>(x, y), live0 | (live1 << 8))) return;
-                        const glm::vec<4, Float8x2> c2 =
-                            shader_here(detail::zipBlocks<V>(inputs(x, row_part), inputs(x + 4, row_part)));
-                        blocks += 2;
-                        mergeBlock(x, y, detail::blockOf(c2, 0), live0);
-                        mergeBlock(x + 4, y, detail::blockOf(c2, 1), live1);
-                    }
-                };
-                bool done = false;
-                if constexpr (Depth::kWide && Color::kWide) {
-                    // Every 4×2 block of the rectangle inside the tile (always, but at a target or
-                    // scissor edge that is not a multiple of 4×2): one loop, no per-block tests but
-                    // depth. The columns a block covers depend on x alone, so they are found once.
-                    const int32_t bx0 = x0 & ~3, by0 = y0 & ~1;
-                    if (x0 <= x1 && y0 <= y1 && bx0 >= tile.x0 && (x1 | 3) <= tile.x1 && by0 >= tile.y0 &&
-                        (y1 | 1) <= tile.y1) {
-                        constexpr int kMaxBlocks = kTileSize / 4 + 1;
-                        uint8_t columns[kMaxBlocks];
-                        const int n_blocks = (x1 - bx0) / 4 + 1;
-                        RASTER_DCHECK(n_blocks <= kMaxBlocks);
-                        for (int k = 0; k < n_blocks; ++k)
-                            columns[k] = uint8_t(blockColumns(bx0 + 4 * k, x0, x1));
-                        // The blocks of each row pair that may not be transparent, [k_begin, k_end), found
-                        // for all row pairs before any is shaded (four at a time, TransparentColumns::
-                        // rowPairs): each is a chain of dependent operations (texel rows, spans, columns)
-                        // that the shading loop would wait for at every row pair.
-                        constexpr int kMaxRowPairs = kTileSize / 2 + 1;
-                        [[maybe_unused]] uint8_t k_begins[kMaxRowPairs], k_ends[kMaxRowPairs];
-                        [[maybe_unused]] bool row_fronts[kMaxRowPairs];
-                        [[maybe_unused]] bool spans = false;
-                        if constexpr (kSkipTransparent) {
-                            const detail::TransparentColumns& tc = transparent_columns;
-                            const auto planes = tc.planes(base, step_x, step_y, r.box.x1 - bx + 1, r.box.y1 - by + 1);
-                            if (planes.usable) {
-                                const int n_pairs = (y1 - by0) / 2 + 1;
-                                RASTER_DCHECK(n_pairs <= kMaxRowPairs);
-                                spans = true;
-                                int32_t los[kMaxRowPairs], his[kMaxRowPairs];
-                                // The columns of [x0, x1] in blocks [0, k).
-                                const int32_t width = x1 - x0 + 1;
-                                [[maybe_unused]] auto columnsBefore = [&](int k) {
-                                    return std::clamp(bx0 + 4 * k - x0, 0, width);
-                                };
-                                tc.rowPairs(planes, by0 - by, n_pairs, x0 - bx, x1 - bx, los, his);
-                                for (int32_t y = by0, p = 0; y <= y1; y += 2, ++p) {
-                                    const int32_t lo = los[p], hi = his[p];
-                                    const int kb = lo > hi ? n_blocks : (lo + bx - bx0) >> 2;
-                                    const int ke = lo > hi ? n_blocks : ((hi + bx - bx0) >> 2) + 1;
-                                    k_begins[p] = uint8_t(kb), k_ends[p] = uint8_t(ke);
-                                    // The skipped blocks' lanes that pass the depth test, counted: in
-                                    // front of the row pair's pixels from the span's ends (the columns
-                                    // of [x0, x1] outside blocks [kb, ke), times the rows), else block
-                                    // by block.
-                                    bool front = kAllPass;
-                                    if constexpr (!kAllPass) front = row_fronts[p] = inFrontInRows(float(z), y);
-                                    if (front) {
-                                        const int32_t n_rows = int32_t(y >= y0) + int32_t(y + 1 <= y1);
-                                        const int32_t outside =
-                                            columnsBefore(kb) + width - columnsBefore(std::max(kb, ke));
-                                        transparent += uint64_t(n_rows * outside);
-                                        if constexpr (!kAllPass) passed += uint64_t(n_rows * outside);
-                                    } else {
-                                        const uint32_t rows = (y >= y0 ? 0x0Fu : 0u) | (y + 1 <= y1 ? 0xF0u : 0u);
-                                        auto count = [&](int s0, int s1) {
-                                            for (int s = s0; s < s1; ++s)
-                                                transparent +=
-                                                    std::popcount(passing(bx0 + 4 * s, y, rows & columns[s]));
-                                        };
-                                        count(0, kb);
-                                        count(std::max(kb, ke), n_blocks);
+                    };
+                    // The lanes of a block inside the tile in `covered` that pass the depth test, counted
+                    // (without kAllPass; with it, all of them, counted per rectangle).
+                    // Without kAllPass, whether the row pair being shaded is in front of its pixels
+                    // (inFrontInRows); false where row pairs are not looked up.
+                    [[maybe_unused]] bool rows_in_front = false;
+                    [[maybe_unused]] auto passing = [&](int32_t x, int32_t y, uint32_t covered) -> uint32_t {
+                        uint32_t live = covered;
+                        if constexpr (!kAllPass) {
+                            if (!rows_in_front) live &= depth_here.testWide(x, y, z8);
+                            passed += uint64_t(std::popcount(live));
+                        }
+                        return live;
+                    };
+                    // Blocks whose pixels are all at the blend's ceiling are not shaded, their live lanes
+                    // counted. Why: dense additive particles saturate the middle of the cloud, and every
+                    // fragment after that changes nothing (100 000 particles at 1080p: 11 % of the
+                    // fragments; PERFORMANCE.md). Tested after depth, so that the counts add up to the
+                    // traced draw's, which shades every fragment.
+                    [[maybe_unused]] auto skipped = [&](bool at_ceiling, uint32_t lanes) {
+                        if (at_ceiling) ceiling += uint64_t(std::popcount(lanes));
+                        return at_ceiling;
+                    };
+                    // One block inside the tile whose live lanes are known: shaded and merged unless at the
+                    // ceiling.
+                    [[maybe_unused]] auto shadeLive = [&](int32_t x, int32_t y, uint32_t live,
+                                                          const Float8(&row_part)[kN]) {
+                        if constexpr (Depth::kWide && Color::kWide) {
+                            if constexpr (Color::kCeiling)
+                                if (skipped(color_here.template atCeiling<1>(x, y), live)) return;
+                            ++blocks;
+                            mergeBlock(x, y, shader_here(inputs(x, row_part)), live);
+                        }
+                    };
+                    // One block inside the tile through depth, shader and blend at once, its lanes outside
+                    // the rectangle (not in `covered`) masked off.
+                    [[maybe_unused]] auto shadeBlock = [&](int32_t x, int32_t y, uint32_t covered,
+                                                           const Float8(&row_part)[kN]) {
+                        if (const uint32_t live = passing(x, y, covered)) shadeLive(x, y, live, row_part);
+                    };
+                    // Blocks x and x + 4 of a row pair inside the tile through one Float8x2 call when both
+                    // have live lanes (else each alone); the same bits as shadeBlock on each. Why: a
+                    // block's texture fetch is one long dependency chain, and two of them interleaved keep
+                    // the core busy where one leaves it waiting (PERFORMANCE.md).
+                    [[maybe_unused]] auto shadePair = [&](int32_t x, int32_t y, uint32_t covered0,
+                                                          uint32_t covered1, const Float8(&row_part)[kN]) {
+                        if constexpr (Depth::kWide && Color::kWide && kPairs) {
+                            const uint32_t live0 = passing(x, y, covered0),
+                                           live1 = passing(x + 4, y, covered1);
+                            if (!live0 || !live1) {
+                                if (live0) shadeLive(x, y, live0, row_part);
+                                if (live1) shadeLive(x + 4, y, live1, row_part);
+                                return;
+                            }
+                            // Both blocks at once (one branch, not two): a pair with one block at the ceiling
+                            // is shaded whole, which stores that block unchanged.
+                            if constexpr (Color::kCeiling)
+                                if (skipped(color_here.template atCeiling<2>(x, y), live0 | (live1 << 8)))
+                                    return;
+                            const glm::vec<4, Float8x2> c2 = shader_here(
+                                detail::zipBlocks<V>(inputs(x, row_part), inputs(x + 4, row_part)));
+                            blocks += 2;
+                            mergeBlock(x, y, detail::blockOf(c2, 0), live0);
+                            mergeBlock(x + 4, y, detail::blockOf(c2, 1), live1);
+                        }
+                    };
+                    bool done = false;
+                    if constexpr (Depth::kWide && Color::kWide) {
+                        // Every 4×2 block of the rectangle inside the tile (always, but at a target or
+                        // scissor edge that is not a multiple of 4×2): one loop, no per-block tests but
+                        // depth. The columns a block covers depend on x alone, so they are found once.
+                        const int32_t bx0 = x0 & ~3, by0 = y0 & ~1;
+                        if (x0 <= x1 && y0 <= y1 && bx0 >= tile.x0 && (x1 | 3) <= tile.x1 && by0 >= tile.y0 &&
+                            (y1 | 1) <= tile.y1) {
+                            constexpr int kMaxBlocks = kTileSize / 4 + 1;
+                            uint8_t columns[kMaxBlocks];
+                            const int n_blocks = (x1 - bx0) / 4 + 1;
+                            RASTER_DCHECK(n_blocks <= kMaxBlocks);
+                            for (int k = 0; k < n_blocks; ++k)
+                                columns[k] = uint8_t(blockColumns(bx0 + 4 * k, x0, x1));
+                            // The blocks of each row pair that may not be transparent, [k_begin, k_end),
+                            // found for all row pairs before any is shaded (four at a time,
+                            // TransparentColumns::rowPairs): each is a chain of dependent operations (texel
+                            // rows, spans, columns) that the shading loop would wait for at every row pair.
+                            constexpr int kMaxRowPairs = kTileSize / 2 + 1;
+                            [[maybe_unused]] uint8_t k_begins[kMaxRowPairs], k_ends[kMaxRowPairs];
+                            [[maybe_unused]] bool row_fronts[kMaxRowPairs];
+                            [[maybe_unused]] bool spans = false;
+                            if constexpr (kSkipTransparent) {
+                                const detail::TransparentColumns& tc = transparent_columns;
+                                const auto planes =
+                                    tc.planes(base, step_x, step_y, r.box.x1 - bx + 1, r.box.y1 - by + 1);
+                                if (planes.usable) {
+                                    const int n_pairs = (y1 - by0) / 2 + 1;
+                                    RASTER_DCHECK(n_pairs <= kMaxRowPairs);
+                                    spans = true;
+                                    int32_t los[kMaxRowPairs], his[kMaxRowPairs];
+                                    // The columns of [x0, x1] in blocks [0, k).
+                                    const int32_t width = x1 - x0 + 1;
+                                    [[maybe_unused]] auto columnsBefore = [&](int k) {
+                                        return std::clamp(bx0 + 4 * k - x0, 0, width);
+                                    };
+                                    tc.rowPairs(planes, by0 - by, n_pairs, x0 - bx, x1 - bx, los, his);
+                                    for (int32_t y = by0, p = 0; y <= y1; y += 2, ++p) {
+                                        const int32_t lo = los[p], hi = his[p];
+                                        const int kb = lo > hi ? n_blocks : (lo + bx - bx0) >> 2;
+                                        const int ke = lo > hi ? n_blocks : ((hi + bx - bx0) >> 2) + 1;
+                                        k_begins[p] = uint8_t(kb), k_ends[p] = uint8_t(ke);
+                                        // The skipped blocks' lanes that pass the depth test, counted: in
+                                        // front of the row pair's pixels from the span's ends (the columns
+                                        // of [x0, x1] outside blocks [kb, ke), times the rows), else block
+                                        // by block.
+                                        bool front = kAllPass;
+                                        if constexpr (!kAllPass)
+                                            front = row_fronts[p] = inFrontInRows(float(z), y);
+                                        if (front) {
+                                            const int32_t n_rows = int32_t(y >= y0) + int32_t(y + 1 <= y1);
+                                            const int32_t outside =
+                                                columnsBefore(kb) + width - columnsBefore(std::max(kb, ke));
+                                            transparent += uint64_t(n_rows * outside);
+                                            if constexpr (!kAllPass) passed += uint64_t(n_rows * outside);
+                                        } else {
+                                            const uint32_t rows =
+                                                (y >= y0 ? 0x0Fu : 0u) | (y + 1 <= y1 ? 0xF0u : 0u);
+                                            auto count = [&](int s0, int s1) {
+                                                for (int s = s0; s < s1; ++s)
+                                                    transparent += std::popcount(
+                                                        passing(bx0 + 4 * s, y, rows & columns[s]));
+                                            };
+                                            count(0, kb);
+                                            count(std::max(kb, ke), n_blocks);
+                                        }
                                     }
                                 }
                             }
-                        }
-                        for (int32_t y = by0, p = 0; y <= y1; y += 2, ++p) {
-                            // Lanes of the rectangle in this row pair: the top row (0x0F), the bottom (0xF0).
-                            const uint32_t rows = (y >= y0 ? 0x0Fu : 0u) | (y + 1 <= y1 ? 0xF0u : 0u);
-                            int k = 0, k_end = n_blocks;
-                            if constexpr (kSkipTransparent)
-                                if (spans) k = k_begins[p], k_end = k_ends[p];
-                            if constexpr (!kAllPass) {
+                            for (int32_t y = by0, p = 0; y <= y1; y += 2, ++p) {
+                                // Lanes of the rectangle in this row pair: the top row (0x0F), the bottom
+                                // (0xF0).
+                                const uint32_t rows = (y >= y0 ? 0x0Fu : 0u) | (y + 1 <= y1 ? 0xF0u : 0u);
+                                int k = 0, k_end = n_blocks;
                                 if constexpr (kSkipTransparent)
-                                    rows_in_front = spans ? row_fronts[p] : inFrontInRows(float(z), y);
-                                else
-                                    rows_in_front = inFrontInRows(float(z), y);
+                                    if (spans) k = k_begins[p], k_end = k_ends[p];
+                                if constexpr (!kAllPass) {
+                                    if constexpr (kSkipTransparent)
+                                        rows_in_front = spans ? row_fronts[p] : inFrontInRows(float(z), y);
+                                    else
+                                        rows_in_front = inFrontInRows(float(z), y);
+                                }
+                                Float8 row_part[kN];
+                                rowPart(y, row_part);
+                                if constexpr (kPairs)
+                                    for (; k + 1 < k_end; k += 2)
+                                        shadePair(bx0 + 4 * k, y, rows & columns[k], rows & columns[k + 1],
+                                                  row_part);
+                                for (; k < k_end; ++k)
+                                    shadeBlock(bx0 + 4 * k, y, rows & columns[k], row_part);
                             }
+                            whole_lanes += uint64_t(x1 - x0 + 1) * uint64_t(y1 - y0 + 1);
+                            done = true;
+                        }
+                    }
+                    rows_in_front = false;
+                    if (!done)
+                        for (int32_t y = y0 & ~1; y <= y1; y += 2) {
+                            const uint32_t rows = (y >= y0 ? 0x0Fu : 0u) | (y + 1 <= y1 ? 0xF0u : 0u);
                             Float8 row_part[kN];
                             rowPart(y, row_part);
-                            if constexpr (kPairs)
-                                for (; k + 1 < k_end; k += 2)
-                                    shadePair(bx0 + 4 * k, y, rows & columns[k], rows & columns[k + 1], row_part);
-                            for (; k < k_end; ++k) shadeBlock(bx0 + 4 * k, y, rows & columns[k], row_part);
-                        }
-                        whole_lanes += uint64_t(x1 - x0 + 1) * uint64_t(y1 - y0 + 1);
-                        done = true;
-                    }
-                }
-                rows_in_front = false;
-                if (!done)
-                for (int32_t y = y0 & ~1; y <= y1; y += 2) {
-                    const uint32_t rows = (y >= y0 ? 0x0Fu : 0u) | (y + 1 <= y1 ? 0xF0u : 0u);
-                    Float8 row_part[kN];
-                    rowPart(y, row_part);
-                    const bool rows_in_tile = y >= tile.y0 && y + 1 <= tile.y1;
-                    for (int32_t x = x0 & ~3; x <= x1; x += 4) {
-                        if constexpr (Depth::kWide && Color::kWide) {
-                            if (rows_in_tile && x >= tile.x0 && x + 3 <= tile.x1) {
-                                const uint32_t covered = rows & blockColumns(x, x0, x1);
-                                whole_lanes += uint64_t(std::popcount(covered));
-                                shadeBlock(x, y, covered, row_part);
-                                continue;
+                            const bool rows_in_tile = y >= tile.y0 && y + 1 <= tile.y1;
+                            for (int32_t x = x0 & ~3; x <= x1; x += 4) {
+                                if constexpr (Depth::kWide && Color::kWide) {
+                                    if (rows_in_tile && x >= tile.x0 && x + 3 <= tile.x1) {
+                                        const uint32_t covered = rows & blockColumns(x, x0, x1);
+                                        whole_lanes += uint64_t(std::popcount(covered));
+                                        shadeBlock(x, y, covered, row_part);
+                                        continue;
+                                    }
+                                }
+                                // Lane by lane: blocks that straddle the tile's edge, and targets or shaders
+                                // without an eight-wide merge.
+                                uint32_t live = 0;
+                                for (int l = 0; l < 8; ++l) {
+                                    const int32_t px = x + (l & 3), py = y + (l >> 2);
+                                    if (px >= x0 && px <= x1 && py >= y0 && py <= y1 &&
+                                        earlyDepthPasses(px, py, z))
+                                        live |= 1u << l;
+                                }
+                                if (!live) continue;
+                                const glm::vec<4, Float8> c = shader_here(inputs(x, row_part));
+                                ++blocks;
+                                live_lanes += uint64_t(std::popcount(live));
+                                for (uint32_t m = live; m; m &= m - 1) {
+                                    const int l = std::countr_zero(m);
+                                    merge(x + (l & 3), y + (l >> 2), z,
+                                          glm::vec4(c.x[l], c.y[l], c.z[l], c.w[l]));
+                                }
                             }
                         }
-                        // Lane by lane: blocks that straddle the tile's edge, and targets or shaders
-                        // without an eight-wide merge.
-                        uint32_t live = 0;
-                        for (int l = 0; l < 8; ++l) {
-                            const int32_t px = x + (l & 3), py = y + (l >> 2);
-                            if (px >= x0 && px <= x1 && py >= y0 && py <= y1 && earlyDepthPasses(px, py, z))
-                                live |= 1u << l;
-                        }
-                        if (!live) continue;
-                        const glm::vec<4, Float8> c = shader_here(inputs(x, row_part));
-                        ++blocks;
-                        live_lanes += uint64_t(std::popcount(live));
-                        for (uint32_t m = live; m; m &= m - 1) {
-                            const int l = std::countr_zero(m);
-                            merge(x + (l & 3), y + (l >> 2), z, glm::vec4(c.x[l], c.y[l], c.z[l], c.w[l]));
-                        }
-                    }
+                    if constexpr (kAllPass)
+                        live_lanes += whole_lanes - transparent - ceiling, passed = whole_lanes;
+                    st.psInvocations += live_lanes;
+                    st.helperInvocations += 8 * blocks - live_lanes;
+                    st.fragmentsEarlyDepthKilled += whole_lanes - passed;
+                    st.fragmentsBlendNoOp += no_ops;
+                    st.fragmentsBlendSaturated += ceiling;
+                    st.fragmentsTransparentSkipped += transparent;
                 }
-                if constexpr (kAllPass) live_lanes += whole_lanes - transparent - ceiling, passed = whole_lanes;
-                st.psInvocations += live_lanes;
-                st.helperInvocations += 8 * blocks - live_lanes;
-                st.fragmentsEarlyDepthKilled += whole_lanes - passed;
-                st.fragmentsBlendNoOp += no_ops;
-                st.fragmentsBlendSaturated += ceiling;
-                st.fragmentsTransparentSkipped += transparent;
-            }
             };
             if (in_front)
                 loop(std::true_type{});
