@@ -2,6 +2,7 @@
 #pragma once
 
 #include <bit>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <type_traits>
@@ -521,34 +522,41 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
 
         // Whole primitives in front of everything: under a draw that writes no depth, the tile's
         // nearest stored depth stays put, so a rectangle of one depth in front of it passes the
-        // depth test in every pixel and its blocks need no test.
+        // depth test in every pixel and its blocks need no test. The same per row pair of the tile
+        // (rows y, y + 1 for even y) for rectangles not in front of the whole tile: a row pair they
+        // are in front of needs no depth test, and its skipped transparent lanes no counting block by
+        // block (PERFORMANCE.md, stop 27). Both from one pass over the tile's depth, once per tile
+        // and draw: the tile's nearest is the least of its row pairs' (−∞ if any entry is NaN).
         [[maybe_unused]] float tile_near = 0.0f;
-        [[maybe_unused]] bool tile_near_known = false;
+        [[maybe_unused]] float row_near[kTileSize / 2 + 1];
+        [[maybe_unused]] bool near_known = false;
+        [[maybe_unused]] const int32_t first_row_pair = rect.y0 & ~1;
+        [[maybe_unused]] auto knowNear = [&] {
+            if constexpr (requires { depth.nearest(rect); }) {
+                if (near_known) return;
+                tile_near = std::numeric_limits<float>::infinity();
+                for (int32_t p = 0, y = first_row_pair; y <= rect.y1; y += 2, ++p) {
+                    row_near[p] =
+                        depth.nearest(PixelRect{rect.x0, std::max(y, rect.y0), rect.x1, std::min(y + 1, rect.y1)});
+                    tile_near = std::min(tile_near, row_near[p]);
+                }
+                near_known = true;
+            }
+        };
         auto inFrontInTile = [&]([[maybe_unused]] float z) {
             if constexpr (requires { Depth::kBoundsTile; }) {
                 if constexpr (Depth::kBoundsTile && !Depth::kWrite && !Tracer::kEnabled) {
-                    if (!tile_near_known) tile_near = depth.nearest(rect), tile_near_known = true;
+                    knowNear();
                     return Depth::passesAll(z, tile_near);
                 }
             }
             return false;
         };
-        // The same per row pair of the tile (rows y, y + 1 for even y), for rectangles not in front
-        // of the whole tile: a row pair they are in front of needs no depth test, and its skipped
-        // transparent lanes no counting block by block (PERFORMANCE.md, stop 27).
-        [[maybe_unused]] float row_near[kTileSize / 2 + 1];
-        [[maybe_unused]] bool row_near_known = false;
         [[maybe_unused]] auto inFrontInRows = [&]([[maybe_unused]] float z, [[maybe_unused]] int32_t y) {
             if constexpr (requires { Depth::kBoundsTile; }) {
                 if constexpr (Depth::kBoundsTile && !Depth::kWrite && !Tracer::kEnabled) {
-                    const int32_t first = rect.y0 & ~1;
-                    if (!row_near_known) {
-                        for (int32_t p = 0, yy = first; yy <= rect.y1; yy += 2, ++p)
-                            row_near[p] = depth.nearest(
-                                PixelRect{rect.x0, std::max(yy, rect.y0), rect.x1, std::min(yy + 1, rect.y1)});
-                        row_near_known = true;
-                    }
-                    return Depth::passesAll(z, row_near[(y - first) >> 1]);
+                    knowNear();
+                    return Depth::passesAll(z, row_near[(y - first_row_pair) >> 1]);
                 }
             }
             return false;
