@@ -446,8 +446,12 @@ TEST(TransparentColumns, RowPairsGiveRowPairsIntervals) {
             const int32_t i_min = int32_t(rng() % uint32_t(w)), i_max = i_min + int32_t(rng() % uint32_t(w - i_min));
             const int32_t j0 = int32_t(rng() % uint32_t(h)) - 1;
             const int n = 1 + int(rng() % 33);
-            std::vector<int32_t> lo(size_t(n), -7), hi(size_t(n), -7);
+            // Room for the padding rowPairs may write, and one sentinel past it that must stay.
+            const size_t room = size_t(n + detail::TransparentColumns::kRowPairsPadding);
+            std::vector<int32_t> lo(room + 1, -7), hi(room + 1, -7);
             columns.rowPairs(planes, j0, n, i_min, i_max, lo.data(), hi.data());
+            ASSERT_EQ(lo[room], -7);
+            ASSERT_EQ(hi[room], -7);
             for (int q = 0; q < n; ++q) {
                 int32_t l, r;
                 columns.rowPair(planes, j0 + 2 * q, i_min, i_max, l, r);

@@ -805,7 +805,8 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                                     const int n_pairs = (y1 - by0) / 2 + 1;
                                     RASTER_DCHECK(n_pairs <= kMaxRowPairs);
                                     spans = true;
-                                    int32_t los[kMaxRowPairs], his[kMaxRowPairs];
+                                    constexpr int kRoom = kMaxRowPairs + detail::TransparentColumns::kRowPairsPadding;
+                                    int32_t los[kRoom], his[kRoom];
                                     // The columns of [x0, x1] in blocks [0, k).
                                     const int32_t width = x1 - x0 + 1;
                                     [[maybe_unused]] auto columnsBefore = [&](int k) {
@@ -851,6 +852,7 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                                 int k = 0, k_end = n_blocks;
                                 if constexpr (kSkipTransparent)
                                     if (spans) k = k_begins[p], k_end = k_ends[p];
+                                if (k >= k_end) continue;  // all transparent: no row part to compute
                                 if constexpr (!kAllPass) {
                                     if constexpr (kSkipTransparent)
                                         rows_in_front = spans ? row_fronts[p] : inFrontInRows(float(z), y);

@@ -34,6 +34,7 @@ class TransparentColumns {
     static constexpr double kMargin = 1.0 / 32.0;  // texels
     static constexpr double kMaxCoord = 4.0;       // |u|, |v| anywhere in the rectangle
     static constexpr int32_t kMaxSide = 4096;      // texels
+    static constexpr int kRowPairsPadding = 3;     // rowPairs' output room past n
 
     TransparentColumns() = default;  // skips nothing
     explicit TransparentColumns(const AlphaSource& source) {
@@ -118,7 +119,8 @@ class TransparentColumns {
 
     // rowPair for the n row pairs j0, j0 + 2, …, j0 + 2(n − 1): lo[q], hi[q] for row pair j0 + 2q,
     // the same values. With AVX2 four row pairs at a time (the same double operations, lane by
-    // lane; the spans by gathers): the rectangle loop asks for all of a tile's row pairs at once.
+    // lane): the rectangle loop asks for all of a tile's row pairs at once. lo and hi must have room
+    // for n rounded up to a multiple of four (kRowPairsPadding more); what lies past n is unspecified.
     void rowPairs(const Planes& p, int32_t j0, int n, int32_t i_min, int32_t i_max, int32_t* lo, int32_t* hi) const {
         int q = 0;
 #if defined(__AVX2__)
@@ -151,10 +153,20 @@ class TransparentColumns {
                 const __m128i ia = _mm_slli_epi32(_mm_add_epi32(level, r0), 1);
                 const __m128i ib = _mm_slli_epi32(
                     _mm_add_epi32(level, _mm_sub_epi32(_mm_add_epi32(r1, one), _mm_sllv_epi32(one, k))), 1);
-                const __m128i first =
-                    _mm_min_epi32(_mm_i32gather_epi32(spans, ia, 4), _mm_i32gather_epi32(spans, ib, 4));
-                const __m128i last =
-                    _mm_max_epi32(_mm_i32gather_epi32(spans + 1, ia, 4), _mm_i32gather_epi32(spans + 1, ib, 4));
+                // Each span's (first, last) as one 8-byte load: gathers measured slower on Zen 5
+                // (PERFORMANCE.md, stop 28).
+                auto spansAt = [&](__m128i index) {  // the four spans' firsts and lasts
+                    alignas(16) int32_t at[4];
+                    _mm_store_si128(reinterpret_cast<__m128i*>(at), index);
+                    auto span = [&](int e) { return _mm_loadl_epi64(reinterpret_cast<const __m128i*>(spans + at[e])); };
+                    const __m128 s01 = _mm_castsi128_ps(_mm_unpacklo_epi64(span(0), span(1)));
+                    const __m128 s23 = _mm_castsi128_ps(_mm_unpacklo_epi64(span(2), span(3)));
+                    return std::pair{_mm_castps_si128(_mm_shuffle_ps(s01, s23, _MM_SHUFFLE(2, 0, 2, 0))),
+                                     _mm_castps_si128(_mm_shuffle_ps(s01, s23, _MM_SHUFFLE(3, 1, 3, 1)))};
+                };
+                const auto [first_a, last_a] = spansAt(ia);
+                const auto [first_b, last_b] = spansAt(ib);
+                const __m128i first = _mm_min_epi32(first_a, first_b), last = _mm_max_epi32(last_a, last_b);
                 const __m128i empty = _mm_cmpgt_epi32(first, last);
                 const __m256d a_lo = _mm256_blendv_pd(
                     _mm256_sub_pd(_mm256_cvtepi32_pd(_mm_sub_epi32(first, one)), margin), a_below,
@@ -170,15 +182,10 @@ class TransparentColumns {
                     _mm256_cvttpd_epi32(_mm256_min_pd(_mm256_max_pd(i0, lo_min), lo_max)), empty_lo, empty);
                 const __m128i h = _mm_blendv_epi8(
                     _mm256_cvttpd_epi32(_mm256_min_pd(_mm256_max_pd(i1, hi_min), hi_max)), empty_hi, empty);
-                if (q + 4 <= n) {
-                    _mm_storeu_si128(reinterpret_cast<__m128i*>(lo + q), l);
-                    _mm_storeu_si128(reinterpret_cast<__m128i*>(hi + q), h);
-                } else {
-                    alignas(16) int32_t l4[4], h4[4];
-                    _mm_store_si128(reinterpret_cast<__m128i*>(l4), l);
-                    _mm_store_si128(reinterpret_cast<__m128i*>(h4), h);
-                    for (int e = 0; q + e < n; ++e) lo[q + e] = l4[e], hi[q + e] = h4[e];
-                }
+                // Four at a time, past n too (see the contract above): the remainder copied element
+                // by element compiled to two calls to memcpy per rectangle.
+                _mm_storeu_si128(reinterpret_cast<__m128i*>(lo + q), l);
+                _mm_storeu_si128(reinterpret_cast<__m128i*>(hi + q), h);
             }
         }
 #endif
