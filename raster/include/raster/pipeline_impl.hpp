@@ -805,7 +805,8 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                                     const int n_pairs = (y1 - by0) / 2 + 1;
                                     RASTER_DCHECK(n_pairs <= kMaxRowPairs);
                                     spans = true;
-                                    constexpr int kRoom = kMaxRowPairs + detail::TransparentColumns::kRowPairsPadding;
+                                    constexpr int kRoom =
+                                        kMaxRowPairs + detail::TransparentColumns::kRowPairsPadding;
                                     int32_t los[kRoom], his[kRoom];
                                     // The columns of [x0, x1] in blocks [0, k).
                                     const int32_t width = x1 - x0 + 1;

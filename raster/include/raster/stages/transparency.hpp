@@ -21,6 +21,7 @@
 #include <cmath>
 #include <cstdint>
 #include <span>
+#include <utility>
 
 #include "raster/sampler.hpp"
 #include "raster/simd.hpp"
@@ -158,7 +159,9 @@ class TransparentColumns {
                 auto spansAt = [&](__m128i index) {  // the four spans' firsts and lasts
                     alignas(16) int32_t at[4];
                     _mm_store_si128(reinterpret_cast<__m128i*>(at), index);
-                    auto span = [&](int e) { return _mm_loadl_epi64(reinterpret_cast<const __m128i*>(spans + at[e])); };
+                    auto span = [&](int e) {
+                        return _mm_loadl_epi64(reinterpret_cast<const __m128i*>(spans + at[e]));
+                    };
                     const __m128 s01 = _mm_castsi128_ps(_mm_unpacklo_epi64(span(0), span(1)));
                     const __m128 s23 = _mm_castsi128_ps(_mm_unpacklo_epi64(span(2), span(3)));
                     return std::pair{_mm_castps_si128(_mm_shuffle_ps(s01, s23, _MM_SHUFFLE(2, 0, 2, 0))),
