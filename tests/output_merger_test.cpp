@@ -459,6 +459,49 @@ void expectWideSameAsScalar() {
 TEST(FastBlender, EightWideAdditiveIsTheScalarBlenderLaneByLane) { expectWideSameAsScalar<BlendAdditiveRgba8>(); }
 TEST(FastBlender, EightWideReplaceIsTheScalarBlenderLaneByLane) { expectWideSameAsScalar<BlendReplaceRgba8>(); }
 
+// The pair of blocks the billboards' loop blends at once (ColorFast::writeWidePair, two 4×2 blocks side
+// by side in a target eight pixels wide) against writeWide on each block: the same sources (NaN, ±∞,
+// negatives, above 1), independent masks per block, and the no-op lanes it returns against noOpWide's.
+TEST(FastBlender, PairOfBlocksIsWriteWideOnEachBlock) {
+    using Color = ColorFast<BlendAdditiveRgba8>;
+    if constexpr (!Color::kWidePair) {
+        GTEST_SKIP() << "no AVX-512 here: the pipeline blends a pair as two writeWide calls";
+    } else {
+        const std::vector<float> grid = sourceGrid();
+        const size_t g = grid.size();
+        std::vector<uint8_t> pair(64), single(64);
+        const Color pair_target{pair.data(), 8}, single_target{single.data(), 8};
+        int mismatches = 0, blends = 0;
+        for (size_t i = 0; i < g; ++i) {
+            for (size_t j = 0; j < g; ++j) {
+                glm::vec<4, Float8x2> c;
+                for (int l = 0; l < 16; ++l) {
+                    c.x.h[l >> 3].set(l & 7, grid[(i + size_t(l)) % g]);
+                    c.y.h[l >> 3].set(l & 7, grid[(3 * i + size_t(l) + 7) % g]);
+                    c.z.h[l >> 3].set(l & 7, grid[(j + 2 * size_t(l)) % g]);
+                    c.w.h[l >> 3].set(l & 7, grid[(j + 5 * size_t(l)) % g]);
+                }
+                const uint32_t varied = uint32_t(i * 131 + j * 29) & 0xFFFFu;
+                for (const uint32_t mask : {0xFFFFu, 0x0000u, 0x00FFu, 0xA55Au, varied}) {
+                    for (size_t b = 0; b < 64; ++b) pair[b] = single[b] = uint8_t(i * 7 + j * 13 + b * 37);
+                    const uint32_t no_ops = pair_target.writeWidePair(0, 0, c, mask);
+                    uint32_t expected_no_ops = 0;
+                    for (int h = 0; h < 2; ++h) {
+                        const glm::vec<4, Float8> block(c.x.h[h], c.y.h[h], c.z.h[h], c.w.h[h]);
+                        single_target.writeWide(4 * h, 0, block, mask >> (8 * h) & 0xFFu);
+                        expected_no_ops |= single_target.noOpWide(block) << (8 * h);
+                    }
+                    ++blends;
+                    if ((pair != single || no_ops != expected_no_ops) && ++mismatches <= 5)
+                        ADD_FAILURE() << "sources " << i << ", " << j << " mask " << mask;
+                }
+            }
+        }
+        EXPECT_EQ(mismatches, 0);
+        EXPECT_EQ(blends, int(g * g * 5));
+    }
+}
+
 // Additive blending on a UNORM target adds the same bytes to every destination: the source term is
 // rounded alone (in units of 1/255) and the destination byte added exactly, then clamped at 255. The
 // older n / 255 + s·a in float made the increment depend on n near ties. Away from ties, that is the

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -246,6 +247,13 @@ TEST(TextureSample, LinearAtTexelCentreReturnsTheTexelExactly) {
 
 // ---- The fixed-point filter of one-level RGBA8 textures under Clamp (texture.hpp, "Precision") ------
 
+// Random texel bytes, so that neighbours differ by up to 255.
+std::vector<uint8_t> randomBytes(size_t n, std::mt19937& rng) {
+    std::vector<uint8_t> bytes(n);
+    for (auto& b : bytes) b = uint8_t(rng());
+    return bytes;
+}
+
 // The float formula's texel indices for coordinate x on an axis of n texels, clamped.
 std::pair<int, int> clampedPair(float x, int n) {
     const int i = int(std::floor(std::clamp(x * float(n) - 0.5f, -16777216.0f, 16777216.0f)));
@@ -256,8 +264,7 @@ TEST(TextureFootprint, WithinItsDocumentedBoundOfTheExactFilter) {
     // Random bytes, so that neighbours differ by up to 255: the bound is tested where it is widest.
     constexpr int kW = 16, kH = 8;
     std::mt19937 rng(11);
-    std::vector<uint8_t> bytes(kW * kH * 4);
-    for (auto& b : bytes) b = uint8_t(rng());
+    const std::vector<uint8_t> bytes = randomBytes(kW * kH * 4, rng);
     const Texture2D t = Texture2D::fromRgba8(kW, kH, bytes);
     const SamplerState s = SamplerState::bilinear(AddressMode::Clamp);
     std::uniform_real_distribution<float> d(-0.2f, 1.2f);
@@ -309,6 +316,49 @@ TEST(TextureFootprint, WeightsAreStepsOf1Over256AndTheSumIsExact) {
     // Outside the texture both texels of a pair clamp to the edge one: exact.
     EXPECT_EQ(t.Sample(s, {-3.0f, 0.5f}), t.load(0, 0));
     EXPECT_EQ(t.Sample(s, {7.0f, -2.0f}), t.load(1, 0));
+}
+
+// Two 4×2 blocks side by side in one call (Float8x2, the billboards' pair) against each lane's
+// scalar sample, on coordinates laid out as a screen-aligned rectangle's: u grows with the pixel's
+// column and v with its row. With AVX-512 the pair reads each row's footprints from one 16-wide
+// window when its eight pixels span fewer than 16 footprints and lane by lane otherwise, so the
+// scales below cover both (0.25 to 1.9 texels a pixel fit, 2.5 and more do not; a mirrored u
+// never fits), at every offset including windows that begin at the last footprints of the texture,
+// and clamped or NaN coordinates.
+TEST(TextureFootprint, PairOfBlocksOnARectangleIsEveryLanesScalarSample) {
+    constexpr int kW = 64, kH = 32;
+    std::mt19937 rng(29);
+    const Texture2D t = Texture2D::fromRgba8(kW, kH, randomBytes(kW * kH * 4, rng));
+    const SamplerState s = SamplerState::bilinear(AddressMode::Clamp);
+    std::uniform_real_distribution<float> origin(-0.3f, 1.3f);
+    int checked = 0, mismatches = 0;
+    for (const float texels_per_pixel : {0.25f, 1.0f, 1.7f, 1.9f, 2.5f, 6.0f, -1.0f}) {
+        for (int round = 0; round < 400; ++round) {
+            const float du = texels_per_pixel / kW, dv = std::abs(texels_per_pixel) / kH;
+            float u0 = origin(rng), v0 = origin(rng);
+            if (round % 50 == 0) u0 = 1.0f - 8 * du, v0 = 1.0f;  // the last footprints of the last row
+            if (round % 50 == 1) u0 = std::numeric_limits<float>::quiet_NaN();
+            glm::vec<2, Float8x2> uv;
+            for (int lane = 0; lane < 16; ++lane) {
+                const int px = (lane & 3) + 4 * (lane >> 3), py = (lane >> 2) & 1;
+                uv.x.h[lane >> 3].set(lane & 7, u0 + (float(px) + 0.5f) * du);
+                uv.y.h[lane >> 3].set(lane & 7, v0 + (float(py) + 0.5f) * dv);
+            }
+            const glm::vec<4, Float8x2> pair = t.Sample(s, uv);
+            for (int lane = 0; lane < 16; ++lane) {
+                const glm::vec4 expected = t.Sample(s, glm::vec2(uv.x[lane], uv.y[lane]));
+                for (int c = 0; c < 4; ++c) {
+                    ++checked;
+                    if (std::bit_cast<uint32_t>(pair[c][lane]) != std::bit_cast<uint32_t>(expected[c]) &&
+                        ++mismatches <= 5)
+                        ADD_FAILURE() << "scale " << texels_per_pixel << " lane " << lane << " uv "
+                                      << uv.x[lane] << "," << uv.y[lane] << " channel " << c;
+                }
+            }
+        }
+    }
+    EXPECT_EQ(mismatches, 0);
+    EXPECT_EQ(checked, 7 * 400 * 16 * 4);
 }
 
 TEST(TextureFootprint, OnlyOneLevelRgba8ClampLinearIsFixedPoint) {

@@ -299,6 +299,7 @@ void Texture2D::buildAlphaSpans() {
 
 void Texture2D::buildFootprints() {
     footprints_.clear();
+    planes_.clear();
     grid_ = {};
     const Level& level = levels_[0];
     if (format_ != Format::R8G8B8A8_UNORM || levels_.size() != 1 || level.width > kMaxFootprintSide ||
@@ -324,6 +325,14 @@ void Texture2D::buildFootprints() {
             put(i + 1, j + 1, f, 3);
         }
     }
+#if RASTER_AVX512
+    const size_t count = size_t(w + 1) * size_t(h + 1), plane = count + kPlaneWindow - 1;
+    planes_.assign(4 * plane, 0);
+    for (size_t c = 0; c < 4; ++c)
+        for (size_t k = 0; k < count; ++k)
+            std::memcpy(&planes_[c * plane + k], &footprints_[16 * k + 4 * c], 4);
+    grid_.planeStride = int32_t(plane);
+#endif
 }
 
 }  // namespace raster

@@ -710,6 +710,24 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                             color_here.writeWide(x, y, c, live);
                         }
                     };
+                    // mergeBlock for blocks x and x + 4 of a pair, the colour in one 16-lane blend where
+                    // the target has one (ColorFast::writeWidePair). Why: the pair sampler's 16-lane
+                    // result then stays in its register, which two eight-lane blends split (PERFORMANCE.md,
+                    // stop 29).
+                    [[maybe_unused]] auto mergePair = [&](int32_t x, int32_t y,
+                                                          const glm::vec<4, Float8x2>& c, uint32_t live0,
+                                                          uint32_t live1) {
+                        if constexpr (Depth::kWide && Color::kWide && Color::kWidePair) {
+                            const uint32_t live = live0 | (live1 << 8);
+                            if constexpr (!kAllPass) live_lanes += uint64_t(std::popcount(live));
+                            depth_here.writeWide(x, y, z8, live0);
+                            depth_here.writeWide(x + 4, y, z8, live1);
+                            no_ops += uint64_t(std::popcount(color_here.writeWidePair(x, y, c, live) & live));
+                        } else {
+                            mergeBlock(x, y, detail::blockOf(c, 0), live0);
+                            mergeBlock(x + 4, y, detail::blockOf(c, 1), live1);
+                        }
+                    };
                     // The lanes of a block inside the tile in `covered` that pass the depth test, counted
                     // (without kAllPass; with it, all of them, counted per rectangle).
                     // Without kAllPass, whether the row pair being shaded is in front of its pixels
@@ -771,8 +789,7 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                             const glm::vec<4, Float8x2> c2 = shader_here(
                                 detail::zipBlocks<V>(inputs(x, row_part), inputs(x + 4, row_part)));
                             blocks += 2;
-                            mergeBlock(x, y, detail::blockOf(c2, 0), live0);
-                            mergeBlock(x + 4, y, detail::blockOf(c2, 1), live1);
+                            mergePair(x, y, c2, live0, live1);
                         }
                     };
                     bool done = false;

@@ -22,7 +22,24 @@
 #include "raster/shader_context.hpp"
 
 #if defined(__AVX__)
+// GCC 12's AVX-512 intrinsics start from a self-initialised "undefined" register (`__Y = __Y`), which
+// -Wmaybe-uninitialized reports wherever they are inlined (fixed in GCC 13). The warning is judged
+// at the header's lines, so it is silenced for them here, where the header is first included, and
+// stays on for the project's own code.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#pragma GCC diagnostic ignored "-Wuninitialized"
 #include <immintrin.h>
+#pragma GCC diagnostic pop
+#endif
+
+// Whether the core has AVX-512 (F, BW, DQ, VL): then the particles' pair of 4×2 blocks is sampled
+// and blended in one 16-lane register (Texture2D::sampleFootprintsPair, ColorFast::writeWidePair),
+// the same operations lane by lane, so the same bits as the eight-lane code.
+#if defined(__AVX512F__) && defined(__AVX512BW__) && defined(__AVX512DQ__) && defined(__AVX512VL__)
+#define RASTER_AVX512 1
+#else
+#define RASTER_AVX512 0
 #endif
 
 namespace raster {

@@ -192,6 +192,13 @@ class Texture2D {
     static constexpr int kMaxFootprintSide = 512;
     void buildFootprints();
     std::vector<uint8_t> footprints_;
+    // The same footprints once more as four planes, one per channel, for the 512-bit pair sampler
+    // (RASTER_AVX512 only): dword k of plane c is bytes 4c..4c+3 of footprint k, and each plane ends
+    // in kPlaneWindow − 1 dwords of padding, so that a window of kPlaneWindow dwords that begins at
+    // any footprint stays inside it. A row of a billboard's block pair reads one window per plane
+    // and picks its lanes' footprints from it in registers (sampleFootprintsPair).
+    static constexpr int kPlaneWindow = 16;
+    std::vector<int32_t> planes_;
     std::vector<AlphaSpan> alpha_spans_;  // the rows' spans, then the unions of 2, 4, 8… rows
     void buildAlphaSpans();
     // What the footprint path reads per call, each broadcast from memory in one instruction: the
@@ -204,6 +211,7 @@ class Texture2D {
         float originIndex = 0;         // width + 2: the index of footprint (0, 0), as (−1, −1) is index 0
         int32_t maxI = 0, maxJ = 0;    // width − 1, height − 1
         int32_t stride = 0;            // width + 1; 0 when there are no footprints
+        int32_t planeStride = 0;       // dwords from one plane to the next; 0 without planes
         bool operator==(const FootprintGrid& other) const = default;
     };
     FootprintGrid grid_;
@@ -225,6 +233,8 @@ class Texture2D {
     // The fixed-point filter for N blocks at once, each step done for every block before the next.
     template <int N>
     void sampleFootprints(const glm::vec<2, Float8> (&uv)[N], glm::vec<4, Float8> (&out)[N]) const;
+    // The same for two blocks in one 16-lane register (RASTER_AVX512), block 0 in lanes 0–7.
+    void sampleFootprintsPair(const glm::vec<2, Float8> (&uv)[2], glm::vec<4, Float8> (&out)[2]) const;
     // The same fixed-point filter for one pixel: footprint (i, j) (clamped here), weights α, β.
     glm::vec4 filterFootprint(int i, int j, float alpha, float beta) const;
 
@@ -484,6 +494,12 @@ template <int N>
     // filterLevel's linear filter with clamped addressing, i.e. filterFootprint, lane by lane the
     // same operations. Each step below runs for all N blocks before the next step begins, so that
     // their fetch chains are in flight together.
+#if RASTER_AVX512
+    if constexpr (N == 2) {
+        sampleFootprintsPair(uv, out);
+        return;
+    }
+#endif
     // bilinear8 with the coordinates clamped to [−1, w−1] × [−1, h−1] in float rather than the
     // footprint indices in integers: a coordinate clamped there selects the same footprint, whose two
     // texels along that axis are then equal, so its weight cannot change the sum; NaN lands on −1.
@@ -537,6 +553,101 @@ template <int N>
             out[n][c] = Float8(simd::F32x8(_mm256_mul_ps(_mm256_add_ps(sum, _mm256_set1_ps(detail::kFootprintBiasSum)),
                                                          _mm256_set1_ps(detail::kFootprintScale))));
         }
+}
+#endif
+
+#if RASTER_AVX512
+[[gnu::always_inline]] inline void Texture2D::sampleFootprintsPair(const glm::vec<2, Float8> (&uv)[2],
+                                                                   glm::vec<4, Float8> (&out)[2]) const {
+    // sampleFootprints<2> with block 0 in lanes 0–7 and block 1 in lanes 8–15: the same operations
+    // lane by lane, so the same bits, in half the instructions.
+    auto join = [](Float8 lo, Float8 hi) {
+        return _mm512_insertf32x8(_mm512_castps256_ps512(__m256(lo.v)), __m256(hi.v), 1);
+    };
+    const __m512 u = join(uv[0].x, uv[1].x), v = join(uv[0].y, uv[1].y);
+    const __m512 half = _mm512_set1_ps(0.5f), minus_one = _mm512_set1_ps(-1.0f);
+    const __m512 a = _mm512_min_ps(
+        _mm512_max_ps(_mm512_sub_ps(_mm512_mul_ps(u, _mm512_set1_ps(grid_.width)), half), minus_one),
+        _mm512_set1_ps(grid_.lastI));
+    const __m512 b = _mm512_min_ps(
+        _mm512_max_ps(_mm512_sub_ps(_mm512_mul_ps(v, _mm512_set1_ps(grid_.height)), half), minus_one),
+        _mm512_set1_ps(grid_.lastJ));
+    const __m512 i = _mm512_roundscale_ps(a, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
+    const __m512 j = _mm512_roundscale_ps(b, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
+    const __m512 alpha = _mm512_sub_ps(a, i), beta = _mm512_sub_ps(b, j);
+    // The footprint's index (j + 1)·stride + (i + 1), exact in float (below 2^19).
+    const __m512i index =
+        _mm512_cvttps_epi32(_mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(j, _mm512_set1_ps(grid_.rowStride)), i),
+                                          _mm512_set1_ps(grid_.originIndex)));
+    // Each row of the pair (lanes 0–3 and 8–11 the top row, 4–7 and 12–15 the bottom one, as a
+    // billboard's blocks are laid out) reads a window of kPlaneWindow footprints from each plane,
+    // beginning at the row's lane 0 or 4, when all of the row's lanes fall inside it: a billboard's
+    // row has one texel row and texel columns that grow with x, so eight pixels span 8 footprints
+    // at one texel a pixel and 16 at just over two. Then VPERMT2D picks every lane's footprint from
+    // the two rows' windows, where the other way costs 16 extracts, 16 loads and a transpose.
+    const __m512i first =
+        _mm512_permutexvar_epi32(_mm512_setr_epi32(0, 0, 0, 0, 4, 4, 4, 4, 0, 0, 0, 0, 4, 4, 4, 4), index);
+    const __m512i offset = _mm512_sub_epi32(index, first);  // unsigned: a lane left of its row's first fails
+    static_assert(kPlaneWindow == 16, "VPERMT2D's second register begins at index 16");
+    __m512i channel[4];
+    if (_mm512_cmplt_epu32_mask(offset, _mm512_set1_epi32(kPlaneWindow)) == 0xFFFF) [[likely]] {
+        const __m512i pick = _mm512_or_si512(
+            offset, _mm512_setr_epi32(0, 0, 0, 0, 16, 16, 16, 16, 0, 0, 0, 0, 16, 16, 16, 16));
+        const int32_t* top = planes_.data() + uint32_t(_mm512_cvtsi512_si32(index));
+        const int32_t* bottom =
+            planes_.data() + uint32_t(_mm_cvtsi128_si32(_mm512_extracti32x4_epi32(index, 1)));
+        const size_t plane = size_t(grid_.planeStride);
+        for (int c = 0; c < 4; ++c)
+            channel[c] = _mm512_permutex2var_epi32(_mm512_loadu_si512(top + c * plane), pick,
+                                                   _mm512_loadu_si512(bottom + c * plane));
+    } else {
+        // Lane by lane as sampleFootprints: one 16-byte load each (byte offset index·16), transposed
+        // into one register per channel. Register r gathers lanes r, r + 4, r + 8, r + 12, one per
+        // 128-bit quarter, so that the transpose within quarters leaves lanes 4q..4q + 3 in quarter q.
+        const uint8_t* f = footprints_.data();
+        const __m512i bytes = _mm512_slli_epi32(index, 4);
+        __m128i quarter[4];
+        for (int q = 0; q < 4; ++q) quarter[q] = _mm512_extracti32x4_epi32(bytes, q);
+        auto load = [&](__m128i q, auto lane) {
+            return _mm_loadu_si128(
+                reinterpret_cast<const __m128i*>(f + uint32_t(_mm_extract_epi32(q, decltype(lane)::value))));
+        };
+        __m512i y[4];
+        auto gatherLanes = [&](auto r) {
+            __m512i z = _mm512_castsi128_si512(load(quarter[0], r));
+            z = _mm512_inserti32x4(z, load(quarter[1], r), 1);
+            z = _mm512_inserti32x4(z, load(quarter[2], r), 2);
+            return _mm512_inserti32x4(z, load(quarter[3], r), 3);
+        };
+        y[0] = gatherLanes(std::integral_constant<int, 0>{}),
+        y[1] = gatherLanes(std::integral_constant<int, 1>{});
+        y[2] = gatherLanes(std::integral_constant<int, 2>{}),
+        y[3] = gatherLanes(std::integral_constant<int, 3>{});
+        const __m512i t0 = _mm512_unpacklo_epi32(y[0], y[1]), t1 = _mm512_unpackhi_epi32(y[0], y[1]);
+        const __m512i t2 = _mm512_unpacklo_epi32(y[2], y[3]), t3 = _mm512_unpackhi_epi32(y[2], y[3]);
+        channel[0] = _mm512_unpacklo_epi64(t0, t2), channel[1] = _mm512_unpackhi_epi64(t0, t2);
+        channel[2] = _mm512_unpacklo_epi64(t1, t3), channel[3] = _mm512_unpackhi_epi64(t1, t3);
+    }
+    // sampleFootprints' weights and filter.
+    const __m512i wa8 = _mm512_min_epi32(
+        _mm512_cvtps_epi32(_mm512_mul_ps(alpha, _mm512_set1_ps(detail::kFootprintAlphaScale))),
+        _mm512_set1_epi32(detail::kFootprintAlphaMax));
+    const __m512i wa16 =
+        _mm512_or_si512(_mm512_slli_epi32(wa8, 8), _mm512_xor_si512(wa8, _mm512_set1_epi32(255)));
+    const __m512i wa = _mm512_or_si512(wa16, _mm512_slli_epi32(wa16, 16));
+    const __m512i wb14 = _mm512_cvtps_epi32(_mm512_mul_ps(beta, _mm512_set1_ps(detail::kFootprintBetaScale)));
+    const __m512i wb = _mm512_or_si512(_mm512_slli_epi32(wb14, 16),
+                                       _mm512_sub_epi32(_mm512_set1_epi32(detail::kFootprintBetaOne), wb14));
+    for (int c = 0; c < 4; ++c) {
+        const __m512i low = _mm512_maddubs_epi16(_mm512_set1_epi16(1), channel[c]);
+        const __m512i rows = _mm512_add_epi16(_mm512_maddubs_epi16(wa, channel[c]), low);
+        const __m512 sum = _mm512_cvtepi32_ps(_mm512_madd_epi16(rows, wb));
+        const __m512 value = _mm512_mul_ps(_mm512_add_ps(sum, _mm512_set1_ps(detail::kFootprintBiasSum)),
+                                           _mm512_set1_ps(detail::kFootprintScale));
+        // Halves: the blend joins them again, and GCC folds the pair of shuffles away.
+        out[0][c] = Float8(simd::F32x8(_mm512_castps512_ps256(value)));
+        out[1][c] = Float8(simd::F32x8(_mm512_extractf32x8_ps(value, 1)));
+    }
 }
 #endif
 

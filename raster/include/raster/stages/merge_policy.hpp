@@ -256,6 +256,52 @@ struct ColorFast {
         std::memcpy(row0, &out.v, 16);
         std::memcpy(row1, reinterpret_cast<const char*>(&out.v) + 16, 16);
     }
+    // Whether writeWidePair exists: the additive blend where the core has AVX-512.
+    static constexpr bool kWidePair = RASTER_AVX512 && std::is_same_v<Blender, BlendAdditiveRgba8>;
+#if RASTER_AVX512
+    // writeWide for two side-by-side blocks at (x, y) and (x + 4, y) in one 16-lane register, block 0
+    // in lanes 0–7 (`mask` bits 0–7) and block 1 in lanes 8–15: the same operations lane by lane, so
+    // the same bytes. Returns the lanes whose fragment cannot change the pixel (noOpWide's).
+    [[gnu::always_inline]] uint32_t writeWidePair(int32_t x, int32_t y, const glm::vec<4, Float8x2>& c,
+                                                  uint32_t mask) const {
+        static_assert(kWidePair);
+        uint8_t* row0 = pixels + 4 * (size_t(y) * width + x);
+        uint8_t* row1 = row0 + 4 * size_t(width);
+        auto join = [](const Float8x2& v) {
+            return _mm512_insertf32x8(_mm512_castps256_ps512(__m256(v.h[0].v)), __m256(v.h[1].v), 1);
+        };
+        // The lanes' order in 128-bit quarters: block 0's top row, its bottom row, block 1's top row,
+        // its bottom row; each pixel row of eight is one 32-byte load and store.
+        const __m512i quarters = _mm512_setr_epi64(0, 1, 4, 5, 2, 3, 6, 7);
+        const __m512i rows = _mm512_inserti64x4(
+            _mm512_castsi256_si512(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(row0))),
+            _mm256_loadu_si256(reinterpret_cast<const __m256i*>(row1)), 1);
+        const __m512i old = _mm512_permutexvar_epi64(quarters, rows);
+        const __m512 zero = _mm512_setzero_ps(), one = _mm512_set1_ps(1.0f), half = _mm512_set1_ps(0.5f);
+        const __m512 sa = _mm512_min_ps(_mm512_max_ps(join(c.w), zero), one);  // saturate8's order
+        const uint32_t no_ops = _mm512_cmpeq_ps_mask(sa, zero);
+        const __m512 sa255 = _mm512_mul_ps(sa, _mm512_set1_ps(255.0f));
+        const __m512i a = _mm512_cvttps_epi32(_mm512_add_ps(_mm512_mul_ps(sa, sa255), half));
+        auto units = [&](const Float8x2& s) {  // writeWide's units
+            return _mm512_cvttps_epi32(
+                _mm512_add_ps(_mm512_mul_ps(_mm512_min_ps(one, join(s)), sa255), half));
+        };
+        const __m512i planar = _mm512_packus_epi16(_mm512_packus_epi32(units(c.x), units(c.y)),
+                                                   _mm512_packus_epi32(units(c.z), a));
+        const __m512i to_pixels =
+            _mm512_broadcast_i32x4(_mm_setr_epi8(0, 4, 8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15));
+        const __m512i sum = _mm512_adds_epu8(old, _mm512_shuffle_epi8(planar, to_pixels));
+        const __m512i out =
+            _mm512_permutexvar_epi64(quarters, _mm512_mask_blend_epi32(__mmask16(mask), old, sum));
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(row0), _mm512_castsi512_si256(out));
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(row1), _mm512_extracti64x4_epi64(out, 1));
+        return no_ops;
+    }
+#else
+    uint32_t writeWidePair(int32_t, int32_t, const glm::vec<4, Float8x2>&, uint32_t) const {
+        return 0;
+    }
+#endif
     template <class Colors>
     bool isNoOp(const Colors& c) const {
         return Blender::isNoOp(colorAt(c, 0));
@@ -277,6 +323,8 @@ struct ColorGeneric {
     // called under `if constexpr (Color::kCeiling)`).
     static constexpr bool kCeiling = false;
     static constexpr bool kAlphaZeroNoOp = false;
+    static constexpr bool kWidePair = false;
+    uint32_t writeWidePair(int32_t, int32_t, const glm::vec<4, Float8x2>&, uint32_t) const { return 0; }
     uint32_t noOpWide(const glm::vec<4, Float8>&) const { return 0; }
     void writeWide(int32_t, int32_t, const glm::vec<4, Float8>&, uint32_t) const {}
     RenderTarget* const* targets;
@@ -312,6 +360,8 @@ struct ColorNone {  // no render target bound: a depth-only pass
     static constexpr bool kWide = true;
     static constexpr bool kCeiling = false;
     static constexpr bool kAlphaZeroNoOp = false;
+    static constexpr bool kWidePair = false;
+    uint32_t writeWidePair(int32_t, int32_t, const glm::vec<4, Float8x2>&, uint32_t) const { return 0; }
     uint32_t noOpWide(const glm::vec<4, Float8>&) const { return 0xFF; }
     void writeWide(int32_t, int32_t, const glm::vec<4, Float8>&, uint32_t) const {}
     template <class Colors>
