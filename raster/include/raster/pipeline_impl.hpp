@@ -792,6 +792,11 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                             mergePair(x, y, c2, live0, live1);
                         }
                     };
+                    // The lanes of row pair y inside the rectangle: the top row's (0x0F) if y ≥ y0, the
+                    // bottom row's (0xF0) if y + 1 ≤ y1.
+                    auto rowLanes = [&](int32_t y) {
+                        return (y >= y0 ? 0x0Fu : 0u) | (y + 1 <= y1 ? 0xF0u : 0u);
+                    };
                     bool done = false;
                     if constexpr (Depth::kWide && Color::kWide) {
                         // Every 4×2 block of the rectangle inside the tile (always, but at a target or
@@ -844,14 +849,13 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                                         if constexpr (!kAllPass)
                                             front = row_fronts[p] = inFrontInRows(float(z), y);
                                         if (front) {
-                                            const int32_t n_rows = int32_t(y >= y0) + int32_t(y + 1 <= y1);
+                                            const int32_t n_rows = std::popcount(rowLanes(y)) / 4;
                                             const int32_t outside =
                                                 columnsBefore(kb) + width - columnsBefore(std::max(kb, ke));
                                             transparent += uint64_t(n_rows * outside);
                                             if constexpr (!kAllPass) passed += uint64_t(n_rows * outside);
                                         } else {
-                                            const uint32_t rows =
-                                                (y >= y0 ? 0x0Fu : 0u) | (y + 1 <= y1 ? 0xF0u : 0u);
+                                            const uint32_t rows = rowLanes(y);
                                             auto count = [&](int s0, int s1) {
                                                 for (int s = s0; s < s1; ++s)
                                                     transparent += std::popcount(
@@ -864,9 +868,7 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                                 }
                             }
                             for (int32_t y = by0, p = 0; y <= y1; y += 2, ++p) {
-                                // Lanes of the rectangle in this row pair: the top row (0x0F), the bottom
-                                // (0xF0).
-                                const uint32_t rows = (y >= y0 ? 0x0Fu : 0u) | (y + 1 <= y1 ? 0xF0u : 0u);
+                                const uint32_t rows = rowLanes(y);
                                 int k = 0, k_end = n_blocks;
                                 if constexpr (kSkipTransparent)
                                     if (spans) k = k_begins[p], k_end = k_ends[p];
@@ -893,7 +895,7 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                     rows_in_front = false;
                     if (!done)
                         for (int32_t y = y0 & ~1; y <= y1; y += 2) {
-                            const uint32_t rows = (y >= y0 ? 0x0Fu : 0u) | (y + 1 <= y1 ? 0xF0u : 0u);
+                            const uint32_t rows = rowLanes(y);
                             Float8 row_part[kN];
                             rowPart(y, row_part);
                             const bool rows_in_tile = y >= tile.y0 && y + 1 <= tile.y1;
