@@ -259,8 +259,8 @@ const InputElementDesc kLayout[] = {
 // A context drawing clip positions into a float target with additive counting and, optionally, depth.
 class Rig {
   public:
-    Rig(uint32_t width, uint32_t height)
-        : ctx_({.threads = 2}),
+    Rig(uint32_t width, uint32_t height, ContextOptions options = {.threads = 2})
+        : ctx_(options),
           layout_(kLayout),
           color_(width, height, Format::R32G32B32A32_FLOAT),
           depth_(width, height) {
@@ -740,6 +740,61 @@ TEST(Watertight, GroundMeshCrossingTheNearPlaneCoversEachPixelOnce) {
         int bottom = 0;
         for (int x = 0; x < W; ++x) bottom += rig.count(x, H - 1) != 0;
         EXPECT_LT(bottom, W) << "yaw " << yaw;
+    }
+}
+
+// ---- Huge coordinates -------------------------------------------------------------------------------
+
+TEST(ClipperExactSum, CancellationBetweenHugeTermsLosesNothing) {
+    detail::ExactSum sum;
+    sum.add(1e300);
+    sum.add(1.0);
+    sum.add(-1e300);
+    EXPECT_EQ(sum.value(), 1.0);
+    // (3e38)² − (3e38)² + 2⁻¹⁰⁰: products kept exactly (the FMA's error term) cancel to the small one.
+    detail::ExactSum products;
+    const double big = 3e38, odd = 3.0000001e38;
+    products.addProduct(big, odd);
+    products.addProduct(-odd, big);
+    products.add(std::ldexp(1.0, -100));
+    EXPECT_EQ(products.value(), std::ldexp(1.0, -100));
+}
+
+// A triangle (−S, −S), (0, S), (S, −S) covers every pixel of a 32×32 target for any S: it covered
+// 1024 for S ≤ 1e10 but 512 for S = 1e15 … 1e35 (the cut at y = −g·w came out at y = 0, as
+// x + g·w rounded to x) and none at 3e38 (the distances overflowed float).
+TEST(ClipperHugeCoordinates, TriangleCoversTheWholeTargetForAnyScale) {
+    for (const float S : {1e3f, 1e10f, 1e15f, 1e20f, 1e25f, 1e30f, 1e35f, 3e38f, std::numeric_limits<float>::max()}) {
+        for (const bool reference : {false, true}) {
+            Rig rig(32, 32, {.threads = 2, .reference = reference});
+            rig.draw({{-S, -S, 0.5f, 1}, {0, S, 0.5f, 1}, {S, -S, 0.5f, 1}});
+            EXPECT_EQ(rig.total(), 1024) << "S = " << S << (reference ? " (reference)" : "");
+            for (int y = 0; y < 32; ++y)
+                for (int x = 0; x < 32; ++x) ASSERT_EQ(rig.count(x, y), 1.0f) << x << "," << y << " S = " << S;
+        }
+    }
+}
+
+TEST(ClipperHugeCoordinates, QuadKeepsBothHalvesAndTheSharedEdgeOnce) {
+    for (const float S : {1e10f, 1e15f, 1e25f, 1e35f, 3e38f}) {
+        Rig rig(32, 32);
+        rig.draw({{-S, -S, 0.5f, 1}, {-S, S, 0.5f, 1}, {S, -S, 0.5f, 1}, {S, -S, 0.5f, 1}, {-S, S, 0.5f, 1},
+                  {S, S, 0.5f, 1}});
+        for (int y = 0; y < 32; ++y)
+            for (int x = 0; x < 32; ++x) ASSERT_EQ(rig.count(x, y), 1.0f) << x << "," << y << " S = " << S;
+    }
+}
+
+TEST(ClipperHugeCoordinates, DiagonalThroughHugeVerticesStaysOnTheDiagonal) {
+    // Both ends of each cut edge are huge: the new vertex must still land on the line y = x, where
+    // a + t·(b − a) with t ≈ 0.5 would put it ~g pixels off. NDC y > x is sx + sy < 32 on screen.
+    for (const float S : {1e8f, 1e15f, 1e30f, 3e38f}) {
+        for (const float w : {1.0f, 1e-8f, 0.5f}) {
+            Rig rig(32, 32);
+            rig.draw({glm::vec4(-S, -S, 0.5f, 1) * w, glm::vec4(S, S, 0.5f, 1) * w, glm::vec4(-S, S, 0.5f, 1) * w});
+            expectRegion(rig, [](double sx, double sy) { return sx + sy < 32; },
+                         "diagonal, S = " + std::to_string(S) + ", w = " + std::to_string(w));
+        }
     }
 }
 

@@ -12,6 +12,9 @@
 // (|x| > w or |y| > w on the same side), is rejected whole. A cut edge's new vertex is always
 // computed from its inside end towards its outside end, so two triangles sharing an edge get the
 // bit-identical point and the mesh stays watertight. A polygon that results is split into a fan.
+// Precision: distances are signed exactly (double), and a cut's new position is computed from
+// exact sums of products (detail::intersect), so any finite input, up to ±3.4e38, is cut where the
+// exact plane crosses its edge, to float's last bits: no half-plane is lost to cancellation.
 #pragma once
 
 #include <cmath>
@@ -19,6 +22,7 @@
 
 #include <glm/glm.hpp>
 
+#include "raster/check.hpp"
 #include "raster/shader.hpp"
 
 namespace raster {
@@ -47,15 +51,36 @@ enum ClipBit : uint32_t {
     kOutTop = 1u << 11,
 };
 
-inline float clipDistance(const glm::vec4& p, int plane, const ClipPlanes& c) {
+// A plane's signed distance d(p) = P·p + k, positive inside (P and k below); in double, where the
+// product of two floats is exact and the one rounding of the sum cannot change its sign, so the
+// outcode and the clipper agree on which side a vertex lies for any finite input.
+struct ClipPlane {
+    double p[4] = {0, 0, 0, 0};  // coefficients of x, y, z, w (each 0, ±1 or ±g, a float)
+    double k = 0;                // constant term (−kMinW for the w plane, else 0)
+};
+
+inline ClipPlane clipPlane(int plane, const ClipPlanes& c) {
+    const double gx = c.guardX, gy = c.guardY;
+    switch (plane) {
+        case 0: return {{0, 0, 1, 0}, 0};
+        case 1: return {{0, 0, -1, 1}, 0};
+        case 2: return {{1, 0, 0, gx}, 0};
+        case 3: return {{-1, 0, 0, gx}, 0};
+        case 4: return {{0, 1, 0, gy}, 0};
+        case 5: return {{0, -1, 0, gy}, 0};
+        default: return {{0, 0, 0, 1}, -double(kMinW)};
+    }
+}
+
+inline double clipDistance(const glm::vec4& p, int plane, const ClipPlanes& c) {
     switch (plane) {
         case 0: return p.z;
-        case 1: return p.w - p.z;
-        case 2: return p.x + c.guardX * p.w;
-        case 3: return c.guardX * p.w - p.x;
-        case 4: return p.y + c.guardY * p.w;
-        case 5: return c.guardY * p.w - p.y;
-        default: return p.w - kMinW;
+        case 1: return double(p.w) - p.z;
+        case 2: return p.x + double(c.guardX) * p.w;
+        case 3: return double(c.guardX) * p.w - p.x;
+        case 4: return p.y + double(c.guardY) * p.w;
+        case 5: return double(c.guardY) * p.w - p.y;
+        default: return double(p.w) - double(kMinW);
     }
 }
 
@@ -63,7 +88,7 @@ inline uint32_t outcode(const glm::vec4& p, const ClipPlanes& c) {
     uint32_t code = 0;
     for (int plane = 0; plane < 7; ++plane) {
         if (plane == 1 && !c.depthClip) continue;
-        if (!(clipDistance(p, plane, c) >= 0.0f)) code |= 1u << plane;
+        if (!(clipDistance(p, plane, c) >= 0.0)) code |= 1u << plane;
     }
     if (p.x < -p.w) code |= kOutLeft;
     if (p.x > p.w) code |= kOutRight;
@@ -78,14 +103,80 @@ inline bool isFinite(const glm::vec4& p) {
 
 namespace detail {
 
+// A sum of doubles kept exactly, as an expansion: terms of increasing magnitude whose bits do not
+// overlap, each new term added by TwoSum (Shewchuk 1997, "Adaptive precision floating-point
+// arithmetic and fast robust geometric predicates"). Cancellation between huge terms then loses
+// nothing, and value() is the sum rounded (within 2 ulp). The clipper's intersections use it.
+class ExactSum {
+  public:
+    static constexpr int kMaxTerms = 24;
+    void add(double x) {
+        int m = 0;
+        for (int i = 0; i < n_; ++i) {  // TwoSum(x, term): s + err is exactly x + term
+            const double s = x + term_[i];
+            const double b_virtual = s - x;
+            const double err = (x - (s - b_virtual)) + (term_[i] - b_virtual);
+            if (err != 0.0) term_[m++] = err;
+            x = s;
+        }
+        if (x != 0.0) term_[m++] = x;
+        n_ = m;
+        RASTER_DCHECK(n_ < kMaxTerms);
+    }
+    // a·b exactly: the rounded product and its rounding error (one FMA).
+    void addProduct(double a, double b) {
+        const double p = a * b;
+        add(std::fma(a, b, -p));
+        add(p);
+    }
+    double value() const {
+        double s = 0.0;
+        for (int i = 0; i < n_; ++i) s += term_[i];
+        return s;
+    }
+
+  private:
+    double term_[kMaxTerms];
+    int n_ = 0;
+};
+
+// Where the edge from `inside` (distance ≥ 0) to `outside` (< 0) crosses the plane. The position
+// is v = (d_b·a − d_a·b) / (d_b − d_a), its numerator and denominator summed exactly from products
+// of the coordinates (the plane's coefficients are floats, so each product is two doubles at most):
+// for an edge between vertices at ±1e38 the result is right to the last bits of float, where
+// a + t·(b − a) would cancel to nothing (a triangle with a vertex at 1e15 lost half the screen
+// that way). The other attributes are interpolated in double with t = d_a / (d_a − d_b).
 template <class V>
-V lerpFromInside(const V& inside, const V& outside, float d_in, float d_out) {
-    const float t = d_in / (d_in - d_out);
+V intersect(const V& inside, const V& outside, const ClipPlane& plane) {
+    const glm::vec4 &a = inside.position, &b = outside.position;
+    ExactSum den, dist_a;  // d_b − d_a, and d_a
+    for (int j = 0; j < 4; ++j) {
+        if (plane.p[j] == 0.0) continue;
+        den.addProduct(plane.p[j], b[j]);
+        den.addProduct(-plane.p[j], a[j]);
+        dist_a.addProduct(plane.p[j], a[j]);
+    }
+    dist_a.add(plane.k);
+    const double d = den.value();  // < 0: d_b < 0 ≤ d_a
+    const double t = -dist_a.value() / d;
     V r;
-    const float* a = asFloats(inside);
-    const float* b = asFloats(outside);
+    const float* fa = asFloats(inside);
+    const float* fb = asFloats(outside);
     float* o = asFloats(r);
-    for (uint32_t i = 0; i < kVertexFloats<V>; ++i) o[i] = a[i] + t * (b[i] - a[i]);
+    for (uint32_t i = 0; i < kVertexFloats<V>; ++i) o[i] = float(fa[i] + t * (double(fb[i]) - fa[i]));
+    for (int i = 0; i < 4; ++i) {
+        ExactSum num;  // Σ_j P_j·(b_j·a_i − a_j·b_i) + k·(a_i − b_i)
+        for (int j = 0; j < 4; ++j) {
+            if (plane.p[j] == 0.0 || j == i) continue;  // the j = i minor is 0
+            num.addProduct(plane.p[j] * b[j], a[i]);    // P_j·b_j is exact: a float times a float
+            num.addProduct(-plane.p[j] * a[j], b[i]);
+        }
+        if (plane.k != 0.0) {
+            num.addProduct(plane.k, a[i]);
+            num.addProduct(-plane.k, b[i]);
+        }
+        r.position[i] = float(num.value() / d);
+    }
     return r;
 }
 
@@ -104,28 +195,25 @@ int clipPrimitive(const V* const (&in)[N], uint32_t cut, const ClipPlanes& plane
         if (!(cut & (1u << plane))) continue;
         const V* src = buf[cur];
         V* dst = buf[cur ^ 1];
+        const ClipPlane cp = clipPlane(plane, planes);
+        auto inside = [&](const V& v) { return clipDistance(v.position, plane, planes) >= 0.0; };
         int out = 0;
         if constexpr (N == 2) {
-            const float d0 = clipDistance(src[0].position, plane, planes);
-            const float d1 = clipDistance(src[1].position, plane, planes);
-            const bool in0 = d0 >= 0, in1 = d1 >= 0;
+            const bool in0 = inside(src[0]), in1 = inside(src[1]);
             if (in0 && in1) {
                 dst[0] = src[0], dst[1] = src[1], out = 2;
             } else if (in0) {
-                dst[0] = src[0], dst[1] = detail::lerpFromInside(src[0], src[1], d0, d1), out = 2;
+                dst[0] = src[0], dst[1] = detail::intersect(src[0], src[1], cp), out = 2;
             } else if (in1) {
-                dst[0] = detail::lerpFromInside(src[1], src[0], d1, d0), dst[1] = src[1], out = 2;
+                dst[0] = detail::intersect(src[1], src[0], cp), dst[1] = src[1], out = 2;
             }
         } else {
             for (int i = 0; i < count; ++i) {
                 const V& p = src[i];
                 const V& q = src[(i + 1) % count];
-                const float dp = clipDistance(p.position, plane, planes);
-                const float dq = clipDistance(q.position, plane, planes);
-                const bool p_in = dp >= 0, q_in = dq >= 0;
+                const bool p_in = inside(p), q_in = inside(q);
                 if (p_in) dst[out++] = p;
-                if (p_in != q_in)
-                    dst[out++] = p_in ? detail::lerpFromInside(p, q, dp, dq) : detail::lerpFromInside(q, p, dq, dp);
+                if (p_in != q_in) dst[out++] = p_in ? detail::intersect(p, q, cp) : detail::intersect(q, p, cp);
             }
         }
         count = out;
