@@ -305,13 +305,5 @@ TEST(FogMedium, ConstantFog) {
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(thin[c] / (fog.q[c] * tiny), 1.0, 1e-5) << c;
 }
 
-TEST(FogMedium, Expm1OverXIsContinuous) {
-    EXPECT_EQ(shaders::FogMedium::expm1OverX(0.0f), 1.0f);
-    for (const double x : {1e-8, 5e-5, 0.99e-4, 1.01e-4, 1e-3, 0.5, -0.5, -30.0, 20.0}) {
-        const double exact = std::expm1(x) / x;
-        EXPECT_NEAR(shaders::FogMedium::expm1OverX(float(x)) / exact, 1.0, 2e-7) << x;
-    }
-}
-
 }  // namespace
 }  // namespace raster

@@ -7,10 +7,19 @@
 //   constant fog:        τ(s) = s
 //   exponential height:  σ(y) = σ·e^{b·y}, q(y) = q·e^{b·y}, ray y(t) = y0 + d_y·t:
 //                        τ(s) = e^{b·y0} · (e^{k·s} − 1)/k,  k = b·d_y.
-// Stable forms (NOTES.md errata): (e^{x} − 1)/x is evaluated as expm1(x)/x, and as its series
-// 1 + x/2 + x²/6 when |x| < 1e-4, so τ → e^{b·y0}·s for a horizontal ray (k → 0) instead of 0/0;
-// at s = ∞ (the background), τ = e^{b·y0}/(−k) for a ray going up into thinning fog (k < 0), and
-// T = 0 otherwise; 1 − T is computed as −expm1(−σ·τ) so thin fog keeps its digits.
+// Stable forms (NOTES.md errata), finite for every finite input:
+//  - the exponents are combined before exponentiating: for k > 0, τ = e^{b·y0 + k·s}·(1 − e^{−k·s})/k,
+//    for k < 0, τ = e^{b·y0}·(1 − e^{k·s})/(−k): both τ = e^E · g with E = b·y0 + max(k·s, 0) and
+//    g = (1 − e^{−|k|·s})/|k| = s·(1 − e^{−x})/x, x = |k|·s, evaluated as −expm1(−x)/|k| (or its
+//    series s·(1 − x/2 + x²/6) when x < 1e-4, so τ → e^{b·y0}·s for a horizontal ray instead of 0/0).
+//    So e^{b·y0} underflowing while e^{k·s} overflows (looking down from high up) cannot give 0·∞.
+//    e^E is taken as (e^{E/2})² with g between the factors, so that e^E alone may overflow or
+//    underflow while τ does not; τ(0) = 0 whatever E is.
+//  - at s = ∞ (the background), τ = e^{b·y0}/(−k) for a ray going up into thinning fog (k < 0), the
+//    same form with g = 1/|k|, and ∞ otherwise;
+//  - 1 − T is computed as −expm1(−σ·τ) so thin fog keeps its digits; in-scattering (q/σ)·(1 − T)
+//    has the limit q·τ for σ → 0 (and 0 for q = 0, whatever τ), which a channel with σ = 0 uses.
+// Domain of the guarantee: σ, q ≥ 0 with q/σ a finite float where σ > 0; s ≥ 0 or s = ∞.
 #pragma once
 
 #include <cmath>
@@ -30,20 +39,26 @@ struct FogMedium {
     float b = -0.5f;      // height falloff, 1/m (height fog only)
     bool height = true;   // false: constant fog
 
-    // (e^x − 1)/x, finite and accurate for every x including 0. T is float or Float8.
+    // m·e^x as (m·e^{x/2})·e^{x/2}: e^x alone may overflow (x > 88.7) or underflow (x < −87.3)
+    // where m·e^x does not. m ≥ 0 finite; the result is 0 or ∞ only where m·e^x rounds to that.
     template <class T>
-    static T expm1OverX(T x) {
-        const T series = T(1.0f) + x * (T(0.5f) + x * T(1.0f / 6.0f));
-        return select(abs(x) < T(1e-4f), series, expm1(x) / x);
+    static T scaledExp(T m, T x) {
+        const T half = exp(x * T(0.5f));
+        return (m * half) * half;
     }
 
     // Optical depth per unit σ from height y0 along unit direction with y component dy, over a
-    // finite distance s.
+    // finite distance s (header comment: τ = e^E·g, exponents combined).
     template <class T>
     T opticalDepth(float y0, T dy, T s) const {
         if (!height) return s;
         const T k = T(b) * dy;
-        return T(exp(b * y0)) * s * expm1OverX(k * s);
+        const T abs_k = abs(k);
+        const T x = abs_k * s;
+        const T series = s * (T(1.0f) - x * (T(0.5f) - x * T(1.0f / 6.0f)));
+        const T g = select(x < T(1e-4f), series, -expm1(-x) / abs_k);
+        const T exponent = T(b * y0) + select(k > T(0.0f), x, T(0.0f));
+        return select(s == T(0.0f), T(0.0f), scaledExp(g, exponent));
     }
     // The same to s = ∞: e^{b·y0}/(−k) for a ray rising into thinning fog (k < 0), else ∞.
     template <class T>
@@ -51,7 +66,15 @@ struct FogMedium {
         const T inf(std::numeric_limits<float>::infinity());
         if (!height) return inf;
         const T k = T(b) * dy;
-        return select(k < T(0.0f), T(exp(b * y0)) / -k, inf);
+        return select(k < T(0.0f), scaledExp(T(1.0f) / -k, T(b * y0)), inf);
+    }
+
+    // In-scattered radiance of channel c over optical depth tau, given e = expm1(−σ_c·tau):
+    // (q/σ)·(1 − T), or its limit q·tau when σ_c = 0 (0 when q_c = 0 too, even for tau = ∞).
+    template <class T>
+    T inScattered(int c, T tau, T e) const {
+        if (sigma[c] == 0.0f) return q[c] == 0.0f ? T(0.0f) : T(q[c]) * tau;
+        return T(q[c] / sigma[c]) * -e;
     }
 
     // Radiance at the eye from a surface of radiance L0 seen through optical depth tau (may be ∞).
@@ -61,9 +84,9 @@ struct FogMedium {
         for (int c = 0; c < 3; ++c) {
             // One expm1 per channel: e = T − 1 (∞ gives e = −1, T = 0). T = 1 + e is off by at most
             // half an ulp of 1 (6e-8 absolute), far below 1/255 as L0 ≤ 1; 1 − T = −e keeps its full
-            // precision for thin fog. Saves three of the pixel's seven exponentials.
-            const T e = expm1(-(T(sigma[c]) * tau));
-            result[c] = L0[c] * (T(1.0f) + e) + T(q[c] / sigma[c]) * -e;
+            // precision for thin fog. Saves three of the pixel's seven exponentials. σ = 0: e = 0.
+            const T e = sigma[c] == 0.0f ? T(0.0f) : expm1(-(T(sigma[c]) * tau));
+            result[c] = L0[c] * (T(1.0f) + e) + inScattered(c, tau, e);
         }
         return result;
     }
@@ -161,7 +184,10 @@ struct PsSky {
         const T dy = in.ray.y / sqrt(in.ray.x * in.ray.x + in.ray.y * in.ray.y + in.ray.z * in.ray.z);
         const T tau = fog.opticalDepthToInfinity(eye.y, dy);
         glm::vec<3, T> L;
-        for (int c = 0; c < 3; ++c) L[c] = T(fog.q[c] / fog.sigma[c]) * -expm1(-(T(fog.sigma[c]) * tau));
+        for (int c = 0; c < 3; ++c) {
+            const T e = fog.sigma[c] == 0.0f ? T(0.0f) : expm1(-(T(fog.sigma[c]) * tau));
+            L[c] = fog.inScattered(c, tau, e);
+        }
         return {L.x, L.y, L.z, T(1.0f)};
     }
 };
