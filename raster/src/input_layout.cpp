@@ -32,7 +32,7 @@ bool isVertexFormat(Format f) {
 }  // namespace
 
 InputLayout::InputLayout(std::span<const InputElementDesc> elements) {
-    uint32_t next_offset[kMaxInputSlots] = {};
+    uint64_t next_offset[kMaxInputSlots] = {};
     for (size_t i = 0; i < elements.size(); ++i) {
         const InputElementDesc& d = elements[i];
         const std::string where = "input element " + std::to_string(i) + " (" +
@@ -46,10 +46,15 @@ InputLayout::InputLayout(std::span<const InputElementDesc> elements) {
                            std::to_string(kMaxInputSlots));
         RASTER_REQUIRE(d.inputSlotClass == InputClassification::PerInstanceData || d.instanceDataStepRate == 0,
                        LayoutMismatch, where + ": a per-vertex element must have instanceDataStepRate 0");
-        const uint32_t offset = d.alignedByteOffset == kAppendAlignedElement ? next_offset[d.inputSlot]
+        // 64-bit: an offset near 2^32 plus the element's size must not wrap around below the limit.
+        const uint64_t offset = d.alignedByteOffset == kAppendAlignedElement ? next_offset[d.inputSlot]
                                                                              : d.alignedByteOffset;
         RASTER_REQUIRE(offset % 4 == 0, LayoutMismatch,
                        where + ": byte offset " + std::to_string(offset) + " is not a multiple of 4");
+        RASTER_REQUIRE(offset + formatSize(d.format) <= kMaxVertexStride, LayoutMismatch,
+                       where + ": byte offset " + std::to_string(offset) + " + " +
+                           std::to_string(formatSize(d.format)) + " bytes of " + std::string(formatName(d.format)) +
+                           " ends past the largest vertex, " + std::to_string(kMaxVertexStride) + " bytes");
         for (const Element& e : elements_) {
             RASTER_REQUIRE(!sameSemantic(e.semanticName, d.semanticName) || e.semanticIndex != d.semanticIndex,
                            LayoutMismatch, where + " repeats a semantic already in the layout");
@@ -60,8 +65,8 @@ InputLayout::InputLayout(std::span<const InputElementDesc> elements) {
             }
         }
         next_offset[d.inputSlot] = offset + formatSize(d.format);
-        elements_.push_back({d.semanticName, d.semanticIndex, d.format, d.inputSlot, offset, d.inputSlotClass,
-                             d.instanceDataStepRate});
+        elements_.push_back({d.semanticName, d.semanticIndex, d.format, d.inputSlot, uint32_t(offset),
+                             d.inputSlotClass, d.instanceDataStepRate});
     }
 }
 
@@ -73,7 +78,8 @@ std::vector<InputFetch> InputLayout::bind(std::span<const ShaderInputField> sign
                                   semanticLabel(f.semanticName, f.semanticIndex) + ")";
         RASTER_REQUIRE(f.components >= 1 && f.components <= 4, LayoutMismatch,
                        field + " is not a float, vec2, vec3 or vec4");
-        RASTER_REQUIRE(f.offset + 4 * f.components <= structSize, LayoutMismatch, field + " lies outside its struct");
+        RASTER_REQUIRE(uint64_t(f.offset) + 4 * f.components <= structSize, LayoutMismatch,
+                       field + " lies outside its struct");
         auto it = std::find_if(elements_.begin(), elements_.end(), [&](const Element& e) {
             return sameSemantic(e.semanticName, f.semanticName) && e.semanticIndex == f.semanticIndex;
         });
@@ -101,7 +107,7 @@ void checkVertexBuffers(std::span<const InputFetch> program, std::span<const Ver
         RASTER_REQUIRE(p.slot < slots.size() && slots[p.slot] != nullptr, LayoutMismatch,
                        where + " is read by the input layout but no vertex buffer is bound to it");
         const VertexBuffer& vb = *slots[p.slot];
-        RASTER_REQUIRE(p.srcOffset + formatSize(p.format) <= vb.stride(), LayoutMismatch,
+        RASTER_REQUIRE(uint64_t(p.srcOffset) + formatSize(p.format) <= vb.stride(), LayoutMismatch,
                        where + ": element at byte " + std::to_string(p.srcOffset) + " (" +
                            std::string(formatName(p.format)) + ") does not fit the buffer's stride of " +
                            std::to_string(vb.stride()) + " bytes");

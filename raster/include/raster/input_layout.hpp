@@ -39,6 +39,9 @@ enum class InputClassification : uint8_t { PerVertexData, PerInstanceData };
 // D3D11_APPEND_ALIGNED_ELEMENT: place the element right after the previous one in its slot.
 constexpr uint32_t kAppendAlignedElement = 0xFFFFFFFFu;
 constexpr uint32_t kMaxInputSlots = 16;
+// D3D11_REQ_MULTI_ELEMENT_STRUCTURE_SIZE_IN_BYTES: every element ends within this many bytes of
+// its vertex (offset + size, computed in 64 bits, so that no offset near 2^32 wraps around).
+constexpr uint64_t kMaxVertexStride = 2048;
 
 struct InputElementDesc {
     const char* semanticName = "";
@@ -85,7 +88,8 @@ class InputLayout {
 public:
     InputLayout() = default;
     // Checks every element (known format, slot < kMaxInputSlots, step rate only per instance, no
-    // duplicate semantic) and resolves kAppendAlignedElement. Throws Error(LayoutMismatch).
+    // duplicate semantic, offset a multiple of 4 and offset + size ≤ kMaxVertexStride) and resolves
+    // kAppendAlignedElement. Throws Error(LayoutMismatch).
     explicit InputLayout(std::span<const InputElementDesc> elements);
     template <size_t N>
     explicit InputLayout(const InputElementDesc (&elements)[N])
