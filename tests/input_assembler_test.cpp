@@ -719,5 +719,42 @@ TEST(InputAssemblerErrors, ErrorsLeaveStatisticsConsistent) {
     EXPECT_TRUE(e.ctx.frameStatistics() == once);
 }
 
+TEST(InputAssemblerErrors, OffsetNearTwoToThe32IsRefusedNotWrapped) {
+    // offset + size wrapped around in 32 bits (0xFFFFFFFC + 12 = 8 <= a stride of 12), and the draw
+    // read ~4 GiB past the buffer. The layout itself now refuses an element that ends past 2048 bytes.
+    for (const uint32_t offset : {0xFFFFFFFCu, 0xFFFFFFF8u, 0xFFFFFFF4u, 0x80000000u, 2048u}) {
+        const InputElementDesc desc[] = {{"POSITION", 0, Format::R32G32B32_FLOAT, 0, offset}};
+        expectError([&] { InputLayout layout(desc); }, ErrorCode::LayoutMismatch,
+                    {"POSITION0", "byte offset " + std::to_string(offset), "2048"});
+    }
+    // An element that ends exactly at 2048 is a valid layout; a 12-byte buffer does not hold it.
+    ErrorSetup e;
+    const InputElementDesc last[] = {{"POSITION", 0, Format::R32G32B32_FLOAT, 0, 2036}};
+    const InputLayout layout(last);
+    e.ctx.setInputLayout(&layout);
+    e.expectDrawError([&] { e.draw(); }, ErrorCode::LayoutMismatch, {"byte 2036", "stride of 12"});
+    // Appended elements are counted in 64 bits too: the one that crosses 2048 is named.
+    std::vector<InputElementDesc> many;
+    for (uint32_t i = 0; i < 129; ++i) many.push_back({"TEXCOORD", i, Format::R32G32B32A32_FLOAT, 0});
+    expectError([&] { InputLayout l(many); }, ErrorCode::LayoutMismatch, {"input element 128", "byte offset 2048"});
+}
+
+TEST(InputAssemblerErrors, CountsTooLargeForTheMachineAreRefusedBeforeAllocating) {
+    // 4e9 instances of a triangle: 1.2e10 vertex shader outputs (192 GB) are refused as
+    // Error(OutOfMemory) naming the count, not thrown as std::bad_alloc, and nothing is drawn.
+    ErrorSetup e;
+    e.expectDrawError([&] { e.ctx.drawInstanced(VsTransform{}, PsConstant{kWhite}, 3, 4000000000u); },
+                      ErrorCode::OutOfMemory, {"12000000000 vertex shader outputs", "4000000000 instances"});
+    // 4e9 vertices: the input assembler's arrays (84 GB) are refused before they are made.
+    e.expectDrawError([&] { e.ctx.draw(VsTransform{}, PsConstant{kWhite}, 4000000000u); }, ErrorCode::OutOfMemory,
+                      {"input assembler", "4000000000 vertices"});
+}
+
+TEST(InputAssemblerErrors, TopologyOutsideTheEnumIsNamedByItsValue) {
+    ErrorSetup e;
+    e.ctx.setPrimitiveTopology(Topology(99));
+    e.expectDrawError([&] { e.draw(); }, ErrorCode::InvalidState, {"topology", "invalid value 99"});
+}
+
 }  // namespace
 }  // namespace raster

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <atomic>
+#include <climits>
 #include <cstdlib>
 #include <functional>
 #include <initializer_list>
@@ -415,6 +416,48 @@ TEST(PipelineValidation, ShaderWritesFewerTargetsThanBound) {
     f.ctx.setRenderTargets(two, &f.depth);
     expectDrawRefused(f, [&] { f.ctx.draw(VsTransform{}, PsConstant{kRed}, 6); }, ErrorCode::InvalidState,
                       {"2 render targets are bound", "writes 1"}, {&second});
+}
+
+TEST(PipelineValidation, EmptyScissorAtIntMinDrawsNothing) {
+    // left = right = INT_MIN is an empty rectangle; right − 1 overflowed to INT_MAX in int32 and the
+    // draw covered everything. Any empty rectangle, wherever it lies, draws nothing.
+    for (const auto& [left, right, top, bottom] :
+         std::vector<std::array<int, 4>>{{INT_MIN, INT_MIN, 0, 4},
+                                         {0, 8, INT_MIN, INT_MIN},
+                                         {INT_MIN, INT_MIN, INT_MIN, INT_MIN},
+                                         {3, 3, 0, 4},
+                                         {INT_MAX, INT_MAX, 0, 4}}) {
+        Fixture f;
+        f.bindColumns(0, 8, 0.5f);
+        RasterizerState rs = f.ctx.rasterizerState();
+        rs.scissorEnable = true;
+        rs.scissorLeft = left, rs.scissorRight = right, rs.scissorTop = top, rs.scissorBottom = bottom;
+        f.ctx.setRasterizerState(rs);
+        const RenderTarget before = f.color;
+        f.ctx.draw(VsTransform{}, PsConstant{kRed}, 6);
+        EXPECT_TRUE(f.color == before) << "scissor " << left << ".." << right << " x " << top << ".." << bottom;
+        EXPECT_EQ(f.ctx.drawStatistics().psInvocations, 0u);
+    }
+    // The widest rectangle draws everything.
+    Fixture f;
+    f.bindColumns(0, 8, 0.5f);
+    RasterizerState rs = f.ctx.rasterizerState();
+    rs.scissorEnable = true;
+    rs.scissorLeft = rs.scissorTop = INT_MIN;
+    rs.scissorRight = rs.scissorBottom = INT_MAX;
+    f.ctx.setRasterizerState(rs);
+    f.ctx.draw(VsTransform{}, PsConstant{kRed}, 6);
+    EXPECT_EQ(f.color.load(7, 3), kRed);
+}
+
+TEST(PipelineValidation, PixelAccessOutsideTheTargetIsRefused) {
+    RenderTarget color(8, 4);
+    DepthTarget depth(8, 4);
+    expectError([&] { color.load(8, 0); }, ErrorCode::OutOfRange, {"RenderTarget::load(8, 0)", "8x4"});
+    expectError([&] { color.store(0, 4, kRed); }, ErrorCode::OutOfRange, {"RenderTarget::store(0, 4)"});
+    expectError([&] { depth.load(0, UINT32_MAX); }, ErrorCode::OutOfRange, {"DepthTarget::load", "8x4"});
+    expectError([&] { depth.store(9, 9, 0.5f); }, ErrorCode::OutOfRange, {"DepthTarget::store(9, 9)"});
+    EXPECT_EQ(depth.load(7, 3), 1.0f);
 }
 
 TEST(PipelineValidation, TargetConstructionAndBinding) {

@@ -13,9 +13,13 @@ PrimitiveKind primitiveKindOf(Topology topology) {
         case Topology::LineStrip: return PrimitiveKind::Line;
         case Topology::TriangleList:
         case Topology::TriangleStrip: return PrimitiveKind::Triangle;
-        case Topology::Undefined: break;
+        case Topology::Undefined:
+            throw Error(ErrorCode::InvalidState,
+                        "primitive topology is undefined: call setPrimitiveTopology before drawing");
     }
-    throw Error(ErrorCode::InvalidState, "primitive topology is undefined: call setPrimitiveTopology before drawing");
+    throw Error(ErrorCode::InvalidState,
+                "primitive topology has the invalid value " + std::to_string(int(topology)) +
+                    " (not a Topology enumerator)");
 }
 
 namespace {
@@ -64,6 +68,10 @@ AssembledDraw assemble(Topology topology, const DrawCall& call, const IndexBuffe
     draw.indicesRead = call.count;
     std::vector<uint32_t> sequence;  // index into draw.fetch, per vertex read
     std::vector<bool> cut;           // a cut precedes this position (only strips have cuts)
+    // Per vertex read: its fetch slot and sequence entry (4 + 4 bytes), up to three primitive
+    // references (12), the cut flag; refused before allocating when the machine cannot hold it.
+    requireMemory(byteCount(call.count, 21), "the input assembler's arrays for " + std::to_string(call.count) +
+                                                 (call.indexed ? " indices" : " vertices"));
     sequence.reserve(call.count);
     if (!call.indexed) {
         RASTER_REQUIRE(uint64_t(call.start) + call.count <= 0xFFFFFFFFull, OutOfRange,

@@ -131,16 +131,25 @@ Context::DrawPlan Context::plan(int pixel_shader_targets, bool, PrimitiveKind) c
     clip.x1 = std::min(clip.x1, int32_t(width) - 1);
     clip.y1 = std::min(clip.y1, int32_t(height) - 1);
     if (rasterizer_.scissorEnable) {
-        clip.x0 = std::max(clip.x0, rasterizer_.scissorLeft);
-        clip.y0 = std::max(clip.y0, rasterizer_.scissorTop);
-        clip.x1 = std::min(clip.x1, rasterizer_.scissorRight - 1);
-        clip.y1 = std::min(clip.y1, rasterizer_.scissorBottom - 1);
+        // Pixels left <= x < right: the inclusive last one is right − 1, taken in 64 bits and kept
+        // at −1 or more (x0 and y0 are at least 0 here), so that right = INT_MIN is an empty
+        // rectangle instead of wrapping around to INT_MAX.
+        const RasterizerState& rs = rasterizer_;
+        auto lastBefore = [](int32_t last, int32_t end) {
+            return int32_t(std::max<int64_t>(-1, std::min<int64_t>(last, int64_t(end) - 1)));
+        };
+        clip.x0 = std::max(clip.x0, rs.scissorLeft);
+        clip.y0 = std::max(clip.y0, rs.scissorTop);
+        clip.x1 = lastBefore(clip.x1, rs.scissorRight);
+        clip.y1 = lastBefore(clip.y1, rs.scissorBottom);
     }
     p.width = width, p.height = height;
     p.clip = clip;
     p.grid = TileGrid(clip);
-    p.planes.guardX = 1.0f + 2.0f * kGuardBandPixels / v.width;
-    p.planes.guardY = 1.0f + 2.0f * kGuardBandPixels / v.height;
+    // At most 1e30, so that a viewport narrower than a denormal still gives a finite plane (the
+    // band is then narrower than 16384 pixels, which only moves where a cut falls, not coverage).
+    p.planes.guardX = std::min(1.0f + 2.0f * kGuardBandPixels / v.width, 1e30f);
+    p.planes.guardY = std::min(1.0f + 2.0f * kGuardBandPixels / v.height, 1e30f);
     p.planes.depthClip = rasterizer_.depthClipEnable;
     return p;
 }

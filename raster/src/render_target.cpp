@@ -9,13 +9,22 @@
 namespace raster {
 namespace {
 
+std::string describe(const char* what, uint32_t width, uint32_t height) {
+    return std::string(what) + " of size " + std::to_string(width) + "x" + std::to_string(height);
+}
+
 void requireSize(uint32_t width, uint32_t height, const char* what) {
     RASTER_REQUIRE(width > 0 && height > 0, InvalidArgument,
-                   std::string(what) + " of size " + std::to_string(width) + "x" + std::to_string(height) +
-                       ": both sides must be at least 1");
+                   describe(what, width, height) + ": both sides must be at least 1");
     RASTER_REQUIRE(width <= RenderTarget::kMaxSize && height <= RenderTarget::kMaxSize, InvalidArgument,
-                   std::string(what) + " of size " + std::to_string(width) + "x" + std::to_string(height) +
-                       ": each side must be at most " + std::to_string(RenderTarget::kMaxSize));
+                   describe(what, width, height) + ": each side must be at most " +
+                       std::to_string(RenderTarget::kMaxSize));
+}
+
+void requirePixel(uint32_t x, uint32_t y, uint32_t width, uint32_t height, const char* what) {
+    RASTER_REQUIRE(x < width && y < height, OutOfRange,
+                   std::string(what) + "(" + std::to_string(x) + ", " + std::to_string(y) + ") is outside the " +
+                       std::to_string(width) + "x" + std::to_string(height) + " target");
 }
 
 }  // namespace
@@ -29,10 +38,14 @@ RenderTarget::RenderTarget(uint32_t width, uint32_t height, Format format) {
     height_ = height;
     format_ = format;
     const size_t n = size_t(width) * height * 4;
-    if (format == Format::R8G8B8A8_UNORM)
-        bytes_.assign(n, 0);
-    else
-        floats_.assign(n, 0.0f);
+    const bool unorm = format == Format::R8G8B8A8_UNORM;
+    allocateOrThrow(describe("render target", width, height) + " " + std::string(formatName(format)),
+                    byteCount(n, unorm ? 1 : sizeof(float)), [&] {
+                        if (unorm)
+                            bytes_.assign(n, 0);
+                        else
+                            floats_.assign(n, 0.0f);
+                    });
 }
 
 void RenderTarget::clearRows(const glm::vec4& color, uint32_t first_row, uint32_t row_count) {
@@ -53,7 +66,7 @@ void RenderTarget::clearRows(const glm::vec4& color, uint32_t first_row, uint32_
 }
 
 glm::vec4 RenderTarget::load(uint32_t x, uint32_t y) const {
-    RASTER_DCHECK(x < width_ && y < height_);
+    requirePixel(x, y, width_, height_, "RenderTarget::load");
     const size_t i = 4 * (size_t(y) * width_ + x);
     if (format_ == Format::R8G8B8A8_UNORM)
         return {unorm8ToFloat(bytes_[i]), unorm8ToFloat(bytes_[i + 1]), unorm8ToFloat(bytes_[i + 2]),
@@ -62,7 +75,7 @@ glm::vec4 RenderTarget::load(uint32_t x, uint32_t y) const {
 }
 
 void RenderTarget::store(uint32_t x, uint32_t y, const glm::vec4& color) {
-    RASTER_DCHECK(x < width_ && y < height_);
+    requirePixel(x, y, width_, height_, "RenderTarget::store");
     const size_t i = 4 * (size_t(y) * width_ + x);
     if (format_ == Format::R8G8B8A8_UNORM) {
         for (int c = 0; c < 4; ++c) bytes_[i + c] = floatToUnorm8(color[c]);
@@ -87,7 +100,19 @@ DepthTarget::DepthTarget(uint32_t width, uint32_t height) {
     requireSize(width, height, "depth target");
     width_ = width;
     height_ = height;
-    depth_.assign(size_t(width) * height, 1.0f);
+    const size_t n = size_t(width) * height;
+    allocateOrThrow(describe("depth target", width, height), byteCount(n, sizeof(float)),
+                    [&] { depth_.assign(n, 1.0f); });
+}
+
+float DepthTarget::load(uint32_t x, uint32_t y) const {
+    requirePixel(x, y, width_, height_, "DepthTarget::load");
+    return depth_[size_t(y) * width_ + x];
+}
+
+void DepthTarget::store(uint32_t x, uint32_t y, float depth) {
+    requirePixel(x, y, width_, height_, "DepthTarget::store");
+    depth_[size_t(y) * width_ + x] = depth;
 }
 
 void DepthTarget::clearRows(float depth, uint32_t first_row, uint32_t row_count) {

@@ -72,7 +72,9 @@ ParticleSceneData::ParticleSceneData(const SceneOptions& o)
     const std::vector<glm::vec3> triangles = {{-0.6f, -1.2f, 0}, {0.6f, -1.2f, 0}, {0.6f, 0.4f, 0},
                                               {-0.6f, -1.2f, 0}, {0.6f, 0.4f, 0},  {-0.6f, 0.4f, 0}};
     occluder = VertexBuffer::create(triangles);
-    std::vector<glm::vec3> positions(o.count);
+    std::vector<glm::vec3> positions;
+    allocateOrThrow("the positions of " + std::to_string(o.count) + " particles", byteCount(o.count, sizeof(glm::vec3)),
+                    [&] { positions.resize(o.count); });
     for (uint32_t i = 0; i < o.count; ++i) positions[i] = particlePosition(i);
     particles = VertexBuffer::create(positions);
     const InputElementDesc desc[] = {{"POSITION", 0, Format::R32G32B32_FLOAT, 0, 0}};

@@ -81,18 +81,30 @@ void validate(const SamplerState& s) {
                    "sampler minLod " + floatText(s.minLod) + " > maxLod " + floatText(s.maxLod));
 }
 
+namespace {
+// Runs make() and reports a std::bad_alloc as Error(OutOfMemory) naming the texture and its texel
+// array (the largest of its allocations; mip levels and sampling tables come on top).
+template <class Make>
+Texture2D allocateTexture(uint32_t width, uint32_t height, Make&& make) {
+    return allocateOrThrow("a " + sizeText(width, height) + " texture's texels (its mip levels and tables besides)",
+                           byteCount(uint64_t(width) * height, sizeof(glm::vec4)), make);
+}
+}  // namespace
+
 Texture2D Texture2D::fromRgba8(uint32_t width, uint32_t height, std::span<const uint8_t> rgba, bool mipmaps) {
     requireTextureSize("Texture2D::fromRgba8", width, height);
     const size_t expected = size_t(width) * height * 4;
     RASTER_REQUIRE(rgba.size() == expected, InvalidArgument,
                    "Texture2D::fromRgba8: " + std::to_string(rgba.size()) + " bytes for a " +
                        sizeText(width, height) + " RGBA8 texture, expected " + std::to_string(expected));
-    std::vector<glm::vec4> texels(size_t(width) * height);
-    for (size_t k = 0; k < texels.size(); ++k)
-        texels[k] = glm::vec4(unorm8ToFloat(rgba[4 * k]), unorm8ToFloat(rgba[4 * k + 1]),
-                              unorm8ToFloat(rgba[4 * k + 2]), unorm8ToFloat(rgba[4 * k + 3]));
-    return build(width, height, Format::R8G8B8A8_UNORM, std::move(texels),
-                 std::vector<uint8_t>(rgba.begin(), rgba.end()), mipmaps);
+    return allocateTexture(width, height, [&] {
+        std::vector<glm::vec4> texels(size_t(width) * height);
+        for (size_t k = 0; k < texels.size(); ++k)
+            texels[k] = glm::vec4(unorm8ToFloat(rgba[4 * k]), unorm8ToFloat(rgba[4 * k + 1]),
+                                  unorm8ToFloat(rgba[4 * k + 2]), unorm8ToFloat(rgba[4 * k + 3]));
+        return build(width, height, Format::R8G8B8A8_UNORM, std::move(texels),
+                     std::vector<uint8_t>(rgba.begin(), rgba.end()), mipmaps);
+    });
 }
 
 Texture2D Texture2D::fromRgba32f(uint32_t width, uint32_t height, std::span<const float> rgba, bool mipmaps) {
@@ -101,10 +113,12 @@ Texture2D Texture2D::fromRgba32f(uint32_t width, uint32_t height, std::span<cons
     RASTER_REQUIRE(rgba.size() == expected, InvalidArgument,
                    "Texture2D::fromRgba32f: " + std::to_string(rgba.size()) + " floats for a " +
                        sizeText(width, height) + " RGBA32F texture, expected " + std::to_string(expected));
-    std::vector<glm::vec4> texels(size_t(width) * height);
-    for (size_t k = 0; k < texels.size(); ++k)
-        texels[k] = glm::vec4(rgba[4 * k], rgba[4 * k + 1], rgba[4 * k + 2], rgba[4 * k + 3]);
-    return build(width, height, Format::R32G32B32A32_FLOAT, std::move(texels), {}, mipmaps);
+    return allocateTexture(width, height, [&] {
+        std::vector<glm::vec4> texels(size_t(width) * height);
+        for (size_t k = 0; k < texels.size(); ++k)
+            texels[k] = glm::vec4(rgba[4 * k], rgba[4 * k + 1], rgba[4 * k + 2], rgba[4 * k + 3]);
+        return build(width, height, Format::R32G32B32A32_FLOAT, std::move(texels), {}, mipmaps);
+    });
 }
 
 Texture2D Texture2D::fromPng(const std::string& path, Format format, bool mipmaps) {

@@ -30,7 +30,7 @@ public:
         VertexBuffer b;
         b.stride_ = uint32_t(sizeof(T));
         b.type_name_ = typeid(T).name();
-        b.bytes_.resize(elements.size_bytes());
+        b.allocate<T>(elements.size());
         if (!elements.empty()) std::memcpy(b.bytes_.data(), elements.data(), elements.size_bytes());
         return b;
     }
@@ -45,7 +45,7 @@ public:
         RASTER_REQUIRE(sizeof(T) == stride_, InvalidArgument,
                        "VertexBuffer::update with elements of " + std::to_string(sizeof(T)) +
                            " bytes into a buffer of stride " + std::to_string(stride_));
-        bytes_.resize(elements.size_bytes());
+        allocate<T>(elements.size());
         if (!elements.empty()) std::memcpy(bytes_.data(), elements.data(), elements.size_bytes());
     }
 
@@ -56,6 +56,14 @@ public:
     const char* typeName() const { return type_name_; }
 
 private:
+    // Room for `count` elements of T; Error(OutOfMemory) naming the buffer if the machine has none.
+    template <class T>
+    void allocate(size_t count) {
+        allocateOrThrow("a vertex buffer of " + std::to_string(count) + " × " + std::to_string(sizeof(T)) +
+                            "-byte " + typeid(T).name(),
+                        byteCount(count, sizeof(T)), [&] { bytes_.resize(count * sizeof(T)); });
+    }
+
     std::vector<std::byte> bytes_;
     uint32_t stride_ = 0;
     const char* type_name_ = "";

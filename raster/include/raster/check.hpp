@@ -8,6 +8,8 @@
 //    RASTER_DCHECK is the same but compiled only into debug builds, for checks on hot paths.
 #pragma once
 
+#include <cstdint>
+#include <new>
 #include <stdexcept>
 #include <string>
 
@@ -21,6 +23,7 @@ enum class ErrorCode {
     OutOfRange,        // a buffer or index read past its end
     BadFile,           // missing, unreadable or corrupt file
     ShaderError,       // a shader broke its contract (e.g. geometry-shader output overflow)
+    OutOfMemory,       // an allocation the machine cannot give (the message names what and how much)
 };
 
 const char* errorCodeName(ErrorCode code);
@@ -36,6 +39,31 @@ private:
 };
 
 [[noreturn]] void checkFailed(const char* file, int line, const char* condition);
+
+// ---- Memory: large allocations fail as Error(OutOfMemory), never as std::bad_alloc ----
+
+// count × size in bytes, UINT64_MAX if the product does not fit (so it fails every limit).
+inline uint64_t byteCount(uint64_t count, uint64_t size) {
+    uint64_t bytes = 0;
+    return __builtin_mul_overflow(count, size, &bytes) ? UINT64_MAX : bytes;
+}
+// "1.5 GiB (1610612736 bytes)", for messages.
+std::string formatBytes(uint64_t bytes);
+// The most one process may hold here: physical memory, or less under `ulimit -v` (RLIMIT_AS).
+uint64_t memoryLimit();
+// Throws Error(OutOfMemory) "<what> needs <bytes>, more than this machine's <limit>" unless
+// bytes ≤ memoryLimit(). For counts that come from the caller, before anything is allocated.
+void requireMemory(uint64_t bytes, const std::string& what);
+// Runs allocate() and turns a std::bad_alloc it throws into Error(OutOfMemory) naming `what` and
+// `bytes` (the request that failed). Everything already allocated or written stays as it was.
+template <class Allocate>
+decltype(auto) allocateOrThrow(const std::string& what, uint64_t bytes, Allocate&& allocate) {
+    try {
+        return allocate();
+    } catch (const std::bad_alloc&) {
+        throw Error(ErrorCode::OutOfMemory, "cannot allocate " + formatBytes(bytes) + " for " + what);
+    }
+}
 
 }  // namespace raster
 

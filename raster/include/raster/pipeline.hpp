@@ -242,7 +242,9 @@ public:
         execute(vs, NoGeometryShader{}, ps,
                 DrawCall{true, indexCountPerInstance, startIndex, baseVertex, instanceCount, startInstance});
     }
-    // Any draw, spelled out.
+    // Any draw, spelled out. Counts that would need more memory than the machine has are refused
+    // before anything is allocated, and an allocation that fails while the stages run is reported:
+    // both as Error(OutOfMemory), never std::bad_alloc.
     template <VertexShader VS, GeometryShader GS, PixelShader PS>
     void execute(const VS& vs, const GS& gs, const PS& ps, const DrawCall& call);
 
@@ -306,6 +308,10 @@ private:
         uint32_t width = 0, height = 0;  // of the bound targets
     };
     DrawPlan plan(int pixel_shader_targets, bool has_gs, PrimitiveKind gs_input) const;
+
+    // execute() without its std::bad_alloc → Error(OutOfMemory) translation.
+    template <VertexShader VS, GeometryShader GS, PixelShader PS>
+    void executeDraw(const VS& vs, const GS& gs, const PS& ps, const DrawCall& call);
 
     template <class T>
     T& scratch() {

@@ -22,6 +22,22 @@ namespace raster {
 
 template <VertexShader VS, GeometryShader GS, PixelShader PS>
 void Context::execute(const VS& vs, const GS& gs, const PS& ps, const DrawCall& call) {
+    const uint32_t draw_index = draw_count_;
+    try {
+        executeDraw(vs, gs, ps, call);
+    } catch (const std::bad_alloc&) {
+        // Counts the caller passed were checked against the machine (requireMemory) before anything
+        // was allocated; this is the machine running out while the stages run.
+        throw Error(ErrorCode::OutOfMemory,
+                    "draw " + std::to_string(draw_index) + " (" + typeName<VS>() + ", " + typeName<PS>() + ", " +
+                        std::to_string(call.count) + " vertices × " + std::to_string(call.instanceCount) +
+                        " instances): an allocation of its stages failed (the machine may hold " +
+                        formatBytes(memoryLimit()) + ")");
+    }
+}
+
+template <VertexShader VS, GeometryShader GS, PixelShader PS>
+void Context::executeDraw(const VS& vs, const GS& gs, const PS& ps, const DrawCall& call) {
     using VsIn = VertexShaderInput<VS>;
     using VsOut = VertexShaderOutput<VS>;
     constexpr bool kHasGs = !std::is_same_v<GS, NoGeometryShader>;
@@ -54,6 +70,11 @@ void Context::execute(const VS& vs, const GS& gs, const PS& ps, const DrawCall& 
     }
     if (call.instanceCount != 0 && !assembled.fetch.empty())
         checkVertexBuffers(program, vertex_buffers_, assembled.maxFetch, call.instanceCount - 1, call.startInstance);
+    const uint64_t vs_outputs = uint64_t(assembled.fetch.size()) * call.instanceCount;  // < 2^64
+    requireMemory(byteCount(vs_outputs, sizeof(VsOut)),
+                  "the draw's " + std::to_string(vs_outputs) + " vertex shader outputs (" +
+                      std::to_string(assembled.fetch.size()) + " vertices × " + std::to_string(call.instanceCount) +
+                      " instances × " + std::to_string(sizeof(VsOut)) + " bytes of " + typeName<VsOut>() + ")");
     draw_stats_ = {};
     const uint32_t draw_index = draw_count_++;
     const RenderProgress::DrawScope progress_scope(progress_);
@@ -73,7 +94,7 @@ void Context::execute(const VS& vs, const GS& gs, const PS& ps, const DrawCall& 
     PipelineStatistics stats;
     stats.iaVertices = assembled.indicesRead * call.instanceCount;
     stats.iaPrimitives = uint64_t(assembled.primitiveCount()) * call.instanceCount;
-    stats.vsInvocations = uint64_t(assembled.fetch.size()) * call.instanceCount;
+    stats.vsInvocations = vs_outputs;
 
     // The last stage this draw runs (StepLimit::stage applies to the step's own draw only).
     const Stage last_stage = draw_index + 1 == step_limit_.draws ? step_limit_.stage : Stage::OutputMerger;

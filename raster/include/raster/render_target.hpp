@@ -40,7 +40,8 @@ class RenderTarget {
 public:
     RenderTarget() = default;
     // Throws Error(InvalidArgument) for a zero or too large size (each side at most kMaxSize)
-    // or a format that is not a colour render-target format.
+    // or a format that is not a colour render-target format, Error(OutOfMemory) if the machine
+    // cannot hold it.
     RenderTarget(uint32_t width, uint32_t height, Format format = Format::R8G8B8A8_UNORM);
 
     static constexpr uint32_t kMaxSize = 16384;  // D3D11_REQ_RENDER_TO_BUFFER_WINDOW_WIDTH
@@ -55,9 +56,10 @@ public:
     // Rows [firstRow, firstRow + rowCount) only (clipped to the target), as clear() sets them;
     // Context::clearRenderTarget clears bands of rows on its threads with it.
     void clearRows(const glm::vec4& color, uint32_t firstRow, uint32_t rowCount);
-    // One pixel as the shader would read it (UNORM -> n/255). x < width, y < height.
+    // One pixel as the shader would read it (UNORM -> n/255). Throws Error(OutOfRange) unless
+    // x < width and y < height.
     glm::vec4 load(uint32_t x, uint32_t y) const;
-    // One pixel written with the format's conversion.
+    // One pixel written with the format's conversion; the same range check.
     void store(uint32_t x, uint32_t y, const glm::vec4& color);
 
     // Raw storage, row-major, row 0 on top: 4 bytes a pixel (UNORM) or 4 floats a pixel (FLOAT).
@@ -92,8 +94,9 @@ public:
 
     void clear(float depth) { clearRows(depth, 0, height_); }
     void clearRows(float depth, uint32_t firstRow, uint32_t rowCount);  // as RenderTarget::clearRows
-    float load(uint32_t x, uint32_t y) const { return depth_[size_t(y) * width_ + x]; }
-    void store(uint32_t x, uint32_t y, float depth) { depth_[size_t(y) * width_ + x] = depth; }
+    // One depth value; throws Error(OutOfRange) unless x < width and y < height.
+    float load(uint32_t x, uint32_t y) const;
+    void store(uint32_t x, uint32_t y, float depth);
     float* data() { return depth_.data(); }
     const float* data() const { return depth_.data(); }
 
