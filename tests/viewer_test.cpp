@@ -246,31 +246,56 @@ TEST(ViewerScript, ErrorsNameTheToken) {
     expectInvalidArgument([] { parseScript("Ctrl+N"); }, {"'Ctrl+N'"});
 }
 
+// Parses `raster view <args>` as build/bin/raster does, then runs it.
 int runView(std::vector<std::string> args) {
+    CLI::App app("raster", "raster");
+    const Command view = addView(app);
+    args.insert(args.begin(), {"raster", "view"});
     std::vector<char*> argv;
     for (std::string& a : args) argv.push_back(a.data());
-    return view(int(argv.size()), argv.data());
+    app.parse(int(argv.size()), argv.data());
+    return view.run();
+}
+
+// The command line `raster view <args>` does not parse, and says why with each of `parts`.
+void expectUsageError(std::vector<std::string> args, std::initializer_list<std::string> parts) {
+    try {
+        runView(args);
+        ADD_FAILURE() << "expected CLI::ParseError, nothing was thrown";
+    } catch (const CLI::ParseError& e) {
+        const std::string message = e.what();
+        for (const std::string& part : parts)
+            EXPECT_NE(message.find(part), std::string::npos)
+                << "message \"" << message << "\" lacks \"" << part << "\"";
+    }
 }
 
 TEST(ViewerCommand, BadOptionsNameTheCulprit) {
     // All of these fail before SDL starts.
-    expectInvalidArgument([] { runView({"smoke", "--headless"}); }, {"unknown scene 'smoke'"});
-    expectInvalidArgument([] { runView({"particles", "--size", "0x10"}); }, {"--size width", "0"});
-    expectInvalidArgument([] { runView({"particles", "--size", "320"}); }, {"--size", "'320'"});
-    expectInvalidArgument([] { runView({"particles", "--size", "320x"}); }, {"--size height"});
-    expectInvalidArgument([] { runView({"particles", "--bogus"}); }, {"'--bogus'"});
-    expectInvalidArgument([] { runView({"particles", "--script"}); }, {"--script needs a value"});
-    expectInvalidArgument([] { runView({"particles", "--headless", "--script", "N ] Z"}); }, {"'Z'"});
-    expectInvalidArgument([] { runView({"fog", "--fog", "thick"}); }, {"'thick'"});
-    expectInvalidArgument([] { runView({"fog", "--screenshot-dir", ""}); }, {"--screenshot-dir"});
-    expectInvalidArgument(
-        [] {
-            runView({"particles", "--headless", "--solution", "smoke"});
-        },
-        {"unknown --solution 'smoke'", "reference", "particles, fog", ".png"});
-    expectInvalidArgument([] { runView({"particles", "--solution", "lab.jpg"}); }, {"'lab.jpg'"});
-    expectInvalidArgument([] { runView({"particles", "--solution", ""}); }, {"--solution takes"});
-    expectInvalidArgument([] { runView({"particles", "--solution"}); }, {"--solution needs a value"});
+    expectUsageError({"smoke", "--headless"}, {"scene: smoke not in", "particles"});
+    expectUsageError({}, {"scene is required"});
+    expectUsageError({"particles", "--size", "0x10"},
+                     {"--size: W of '0x10'", "Value 0 not in range 1 to 16384"});
+    expectUsageError({"particles", "--size", "320"}, {"--size", "'320'"});
+    expectUsageError({"particles", "--size", "320x"}, {"--size: H of '320x'"});
+    expectUsageError({"particles", "--count", "50000001"}, {"--count", "50000001"});
+    expectUsageError({"particles", "--threads", "0"}, {"--threads", "Value 0"});
+    expectUsageError({"particles", "--bogus"}, {"--bogus"});
+    expectUsageError({"particles", "--script"}, {"--script", "required"});
+    expectUsageError({"particles", "--headless", "--script", "N ] Z"}, {"--script", "'Z'"});
+    expectUsageError({"fog", "--fog", "thick"}, {"--fog", "thick"});
+    expectUsageError({"fog", "--screenshot-dir", ""}, {"--screenshot-dir"});
+    expectUsageError({"particles", "--headless", "--solution", "smoke"},
+                     {"unknown --solution 'smoke'", "reference", "particles, fog", ".png"});
+    expectUsageError({"particles", "--solution", "lab.jpg"}, {"'lab.jpg'"});
+    expectUsageError({"particles", "--solution", ""}, {"--solution: takes"});
+    expectUsageError({"particles", "--solution"}, {"--solution", "required"});
+    // raster render --view opens the viewer without a command line: the same names are refused.
+    ViewerOptions bad_scene, bad_solution;
+    bad_scene.scene = "smoke";
+    bad_solution.solution = "smoke";
+    expectInvalidArgument([&] { openViewer(bad_scene); }, {"unknown scene 'smoke'"});
+    expectInvalidArgument([&] { openViewer(bad_solution); }, {"unknown --solution 'smoke'"});
 }
 
 TEST(SceneCamera, DefaultIsTheScenesOwnAndBadOnesAreRefused) {

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -17,57 +18,19 @@
 namespace raster::tools {
 namespace {
 
-constexpr const char* kUsage =
-    "usage: raster bench particles|fog [--width W] [--height H] [--count N] [--cubes M]\n"
-    "                    [--fog constant|height] [--frames K] [--threads T] [--out image.png]\n"
-    "                    [--texture fire.png] [--reference] [--no-error]\n"
-    "  K timed frames (default 20) after one warm-up frame, on T threads (default: all cores).\n"
-    "  Prints the fast pipeline's error against the reference pipeline (skip with --no-error), then\n"
-    "  'raster <scene> <W>x<H> ms_per_frame_median=<t> frames=<K>'.\n";
-
-}  // namespace
-
-int bench(int argc, char** argv) {
-    ArgReader args(argc, argv);
-    if (args.done()) {
-        std::fputs(kUsage, stderr);
-        return 2;
-    }
-    const std::string scene_name(args.take());
-    if (scene_name == "--help" || scene_name == "-h") {
-        std::fputs(kUsage, stdout);
-        return 0;
-    }
+struct BenchArgs {
+    std::string scene;
     SceneOptions options;
     uint32_t frames = 20, threads = 0;
     std::string out;
-    bool reference = false, error = true;
-    while (!args.done()) {
-        const std::string_view a = args.take();
-        if (a == "--width") options.width = parseUint(a, args.value(a), 1, RenderTarget::kMaxSize);
-        else if (a == "--height") options.height = parseUint(a, args.value(a), 1, RenderTarget::kMaxSize);
-        else if (a == "--count") options.count = parseUint(a, args.value(a), 0, 50'000'000);
-        else if (a == "--cubes") options.cubes = parseUint(a, args.value(a), 0, 1024);
-        else if (a == "--frames") frames = parseUint(a, args.value(a), 1, 100000);
-        else if (a == "--threads") threads = parseUint(a, args.value(a), 1, 1024);
-        else if (a == "--out") out = args.value(a);
-        else if (a == "--texture") options.texture = args.value(a);
-        else if (a == "--reference") reference = true;
-        else if (a == "--no-error") error = false;
-        else if (a == "--fog") {
-            const std::string_view f = args.value(a);
-            RASTER_REQUIRE(f == "constant" || f == "height", InvalidArgument,
-                           "--fog takes constant or height, not '" + std::string(f) + "'");
-            options.heightFog = f == "height";
-        } else if (a == "--help" || a == "-h") {
-            std::fputs(kUsage, stdout);
-            return 0;
-        } else {
-            throw Error(ErrorCode::InvalidArgument, "unknown option '" + std::string(a) + "'\n" + kUsage);
-        }
-    }
-    std::unique_ptr<Scene> scene = makeScene(scene_name, options);
-    Context context({threads, reference});
+    bool reference = false, noError = false;
+};
+
+int runBench(const BenchArgs& args) {
+    const SceneOptions& options = args.options;
+    const uint32_t frames = args.frames, threads = args.threads;
+    std::unique_ptr<Scene> scene = makeScene(args.scene, options);
+    Context context({threads, args.reference});
     RenderTarget color(options.width, options.height);
     DepthTarget depth(options.width, options.height);
 
@@ -76,10 +39,11 @@ int bench(int argc, char** argv) {
     for (uint32_t f = 0; f < frames; ++f) {
         const auto t0 = std::chrono::steady_clock::now();
         scene->render(context, color, depth);
-        ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+        ms.push_back(
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     }
     std::sort(ms.begin(), ms.end());
-    if (!out.empty()) color.savePng(out);
+    if (!args.out.empty()) color.savePng(args.out);
 
     const PipelineStatistics& stats = context.frameStatistics();
     rusage usage{};
@@ -88,23 +52,44 @@ int bench(int argc, char** argv) {
         "threads=%u reference=%d min_ms=%.3f max_ms=%.3f ps_invocations_per_frame=%llu "
         "at_ceiling_per_frame=%llu transparent_skipped_per_frame=%llu rectangles_per_frame=%llu "
         "peak_rss_mb=%.1f\n",
-        context.threads(), int(reference), ms.front(), ms.back(),
+        context.threads(), int(args.reference), ms.front(), ms.back(),
         (unsigned long long)(stats.psInvocations / (frames + 1)),
         (unsigned long long)(stats.fragmentsBlendSaturated / (frames + 1)),
         (unsigned long long)(stats.fragmentsTransparentSkipped / (frames + 1)),
         (unsigned long long)(stats.rectanglesRecognized / (frames + 1)), double(usage.ru_maxrss) / 1024.0);
-    if (error && !reference) {
+    if (!args.noError && !args.reference) {
         Context ref_context({threads, true});
         RenderTarget ref_color(options.width, options.height);
         DepthTarget ref_depth(options.width, options.height);
         scene->render(ref_context, ref_color, ref_depth);
-        const ImageDifference e = compareImages(color.toRgba8(), ref_color.toRgba8(), color.width(), color.height(), 3);
+        const ImageDifference e =
+            compareImages(color.toRgba8(), ref_color.toRgba8(), color.width(), color.height(), 3);
         std::printf("error_vs_reference mean_abs=%.4f max_diff=%d within_1=%.6f\n", e.meanAbs, e.max,
                     double(e.within1) / double(e.pixels));
     }
-    std::printf("raster %s %ux%u ms_per_frame_median=%.3f frames=%u\n", scene_name.c_str(), options.width,
+    std::printf("raster %s %ux%u ms_per_frame_median=%.3f frames=%u\n", args.scene.c_str(), options.width,
                 options.height, ms[ms.size() / 2], frames);
     return 0;
+}
+
+}  // namespace
+
+Command addBench(CLI::App& app) {
+    CLI::App* command = addCommand(app, "bench", "time a benchmark scene of SCENES.md");
+    auto args = std::make_shared<BenchArgs>();
+    addSceneName(*command, args->scene)->required();
+    addSizeOptions(*command, args->options);
+    addContentOptions(*command, args->options);
+    command->add_option("--texture", args->options.texture, "particles: a PNG instead of the generated fire");
+    addWholeNumber(*command, "--frames", args->frames, 1, 100'000, "timed frames, after one warm-up frame");
+    addThreadsOption(*command, args->threads);
+    command->add_option("--out", args->out, "write the last frame to this PNG file");
+    command->add_flag("--reference", args->reference, "run the reference pipeline");
+    command->add_flag("--no-error", args->noError, "skip the error against the reference pipeline");
+    command->footer(
+        "Prints the fast pipeline's error against the reference pipeline (skip with --no-error), then\n"
+        "'raster <scene> <W>x<H> ms_per_frame_median=<t> frames=<K>'.");
+    return {command, [args] { return runBench(*args); }};
 }
 
 }  // namespace raster::tools

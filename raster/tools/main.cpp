@@ -1,48 +1,70 @@
-// build/bin/raster: one program, one subcommand per file.
+// build/bin/raster: one program, one subcommand per file, the command line parsed by CLI11.
+// Exit status: 0 done (or --help), kUsageExit (2) a command line that does not parse (a bad value,
+// an unknown option or subcommand, a missing value), 1 an error while running.
 #include <cstdio>
-#include <cstring>
+#include <exception>
+#include <new>
 #include <string>
+#include <vector>
 
 #include "commands.hpp"
+#include "options.hpp"
 #include "raster/check.hpp"
 
 namespace {
 
-void usage(FILE* out) {
-    std::fprintf(out,
-                 "usage: raster <command> [options]\n"
-                 "commands:\n"
-                 "  bench particles|fog [options]   time a benchmark scene of SCENES.md (raster bench --help)\n"
-                 "  microbench [benchmark flags]    per-stage microbenchmarks (Google Benchmark: --benchmark_filter=...)\n"
-                 "  render [scene...] [--out-dir D] render the lecture's scenes to PNG files\n"
-                 "  trace <scene> --stats           pipeline statistics of each draw of one frame\n"
-                 "  view <scene> [options]          the SDL2 viewer: step through draws and primitives (raster view --help)\n"
-                 "  help                            this text\n");
+// "raster" or "raster bench": the program and the subcommand on the command line, if any.
+std::string commandName(const CLI::App& app) {
+    const std::vector<CLI::App*> parsed = app.get_subcommands();
+    return parsed.empty() ? "raster" : "raster " + parsed.front()->get_name();
+}
+
+int usageError(const CLI::App& app, const CLI::ParseError& e) {
+    const std::string name = commandName(app);
+    std::fprintf(stderr, "%s: %s\n(%s --help lists the %s)\n", name.c_str(), e.what(), name.c_str(),
+                 app.get_subcommands().empty() ? "commands" : "options");
+    return raster::tools::kUsageExit;
+}
+
+int runError(const CLI::App& app, const std::string& message) {
+    std::fprintf(stderr, "%s: %s\n", commandName(app).c_str(), message.c_str());
+    return 1;
+}
+
+// Parses the command line, then runs the subcommand on it; returns the exit status.
+int run(CLI::App& app, const std::vector<raster::tools::Command>& commands, int argc, char** argv) {
+    try {
+        app.parse(argc, argv);
+        for (const raster::tools::Command& command : commands)
+            if (command.app->parsed()) return command.run();
+        const bool asked = app.get_subcommand("help")->parsed();
+        std::fputs(app.get_formatter()->make_help(&app, "raster", CLI::AppFormatMode::Normal).c_str(),
+                   asked ? stdout : stderr);
+        return asked ? 0 : raster::tools::kUsageExit;
+    } catch (const CLI::Success& e) {
+        return app.exit(e);  // --help: printed on stdout
+    } catch (const CLI::ParseError& e) {
+        return usageError(app, e);
+    } catch (const raster::Error& e) {
+        return runError(app, e.what());
+    } catch (const std::bad_alloc& e) {
+        return runError(app, std::string("out of memory (") + e.what() + ")");
+    } catch (const std::exception& e) {
+        return runError(app, e.what());
+    }
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-    if (argc < 2) {
-        usage(stderr);
-        return 2;
-    }
-    const std::string command = argv[1];
-    try {
-        if (command == "bench") return raster::tools::bench(argc - 2, argv + 2);
-        if (command == "microbench") return raster::tools::microbench(argc - 2, argv + 2);
-        if (command == "render") return raster::tools::render(argc - 2, argv + 2);
-        if (command == "trace") return raster::tools::trace(argc - 2, argv + 2);
-        if (command == "view") return raster::tools::view(argc - 2, argv + 2);
-        if (command == "help" || command == "--help" || command == "-h") {
-            usage(stdout);
-            return 0;
-        }
-        std::fprintf(stderr, "raster: unknown command '%s'\n", command.c_str());
-        usage(stderr);
-        return 2;
-    } catch (const raster::Error& e) {
-        std::fprintf(stderr, "raster %s: %s\n", command.c_str(), e.what());
-        return 1;
-    }
+    CLI::App app("raster: a software rasterizer emulating the Direct3D 11 pipeline", "raster");
+    app.require_subcommand(0, 1);
+    const std::vector<raster::tools::Command> commands = {
+        raster::tools::addBench(app), raster::tools::addMicrobench(app), raster::tools::addRender(app),
+        raster::tools::addTrace(app), raster::tools::addView(app)};
+    app.add_subcommand("help", "this text");
+    app.footer(
+        "raster <command> --help lists a command's options. Exit status: 0 done, 2 a command line\n"
+        "that does not parse, 1 an error while running.");
+    return run(app, commands, argc, argv);
 }

@@ -25,6 +25,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "commands.hpp"
+#include "options.hpp"
 #include "raster/pipeline.hpp"
 #include "raster/scenes.hpp"
 #include "raster/shaders/basic.hpp"
@@ -474,24 +475,38 @@ void registerAll() {
         ->ArgName("threads")->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 }
 
-}  // namespace
-
-// argv holds the arguments after "microbench"; Google Benchmark wants a program name in argv[0].
-int microbench(int argc, char** argv) {
-    std::string program = "raster microbench";
+// args: the command line after "microbench", for Google Benchmark, which wants a program name first.
+int runMicrobench(std::vector<std::string> args) {
     // 0.3 s per benchmark unless the command line says otherwise (a later flag wins): the whole
     // run then takes well under two minutes.
-    std::string min_time = "--benchmark_min_time=0.3";
-    std::vector<char*> args{program.data(), min_time.data()};
-    args.insert(args.end(), argv, argv + argc);
-    args.push_back(nullptr);
-    int count = argc + 2;
-    benchmark::Initialize(&count, args.data());
-    if (benchmark::ReportUnrecognizedArguments(count, args.data())) return 2;
+    args.insert(args.begin(), {"raster microbench", "--benchmark_min_time=0.3"});
+    std::vector<char*> argv;
+    for (std::string& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    int count = int(args.size());
+    benchmark::Initialize(&count, argv.data());
+    if (benchmark::ReportUnrecognizedArguments(count, argv.data())) return kUsageExit;
     registerAll();
     benchmark::RunSpecifiedBenchmarks();
     benchmark::Shutdown();
     return 0;
+}
+
+}  // namespace
+
+// Every argument after "microbench", from the first one that is not --help, goes to Google
+// Benchmark as it is (CLI11's prefix command).
+Command addMicrobench(CLI::App& app) {
+    CLI::App* command = addCommand(app, "microbench", "per-stage microbenchmarks (Google Benchmark)");
+    command->prefix_command();
+    command->footer(
+        "The arguments are Google Benchmark's flags, passed on to it as they are, e.g.\n"
+        "  --benchmark_filter=REGEX     run only the benchmarks whose names match\n"
+        "  --benchmark_list_tests       list the benchmarks, run none\n"
+        "  --benchmark_min_time=SECONDS time per benchmark (default here 0.3)\n"
+        "  --benchmark_repetitions=N    --benchmark_format=console|json|csv  --benchmark_out=FILE\n"
+        "An argument it does not know exits with status 2.");
+    return {command, [command] { return runMicrobench(command->remaining()); }};
 }
 
 }  // namespace raster::tools

@@ -1,42 +1,138 @@
-// Command-line parsing shared by the subcommands: strict numbers, clear errors.
+// Command-line options shared by the subcommands, declared with CLI11 (libcli11-dev). Every option
+// is declared once, with its range or its choices; a bad value, an unknown option or a missing value
+// is a CLI::ParseError naming the option, which main() prints and exits with kUsageExit.
 #pragma once
 
-#include <charconv>
+#include <algorithm>
 #include <cstdint>
+#include <functional>
 #include <string>
-#include <string_view>
+#include <utility>
+
+#include <CLI/CLI.hpp>
 
 #include "raster/check.hpp"
+#include "raster/render_target.hpp"
+#include "raster/scenes.hpp"
 
 namespace raster::tools {
 
-// Parses a whole decimal integer in [lo, hi]; throws Error(InvalidArgument) naming the option.
-inline uint32_t parseUint(std::string_view option, std::string_view text, uint32_t lo, uint32_t hi) {
-    uint64_t value = 0;
-    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-    RASTER_REQUIRE(ec == std::errc() && end == text.data() + text.size() && !text.empty(), InvalidArgument,
-                   std::string(option) + " takes a whole number, not '" + std::string(text) + "'");
-    RASTER_REQUIRE(value >= lo && value <= hi, InvalidArgument,
-                   std::string(option) + " " + std::string(text) + " is outside " + std::to_string(lo) + ".." +
-                       std::to_string(hi));
-    return uint32_t(value);
+// The exit status of a command line that does not parse; an error while running exits 1.
+constexpr int kUsageExit = 2;
+
+// Digits only, leading zeros dropped: CLI11 alone would read "010" as octal 8 and take "+5", " 5"
+// and "0x10". Returns "" or what is wrong (the form of a CLI::Validator's function).
+inline std::string wholeNumber(std::string& text) {
+    if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos)
+        return "'" + text + "' is not a whole number";
+    text.erase(0, std::min(text.find_first_not_of('0'), text.size() - 1));
+    return "";
 }
 
-// Walks argv; next() returns an option's value or throws naming the option.
-class ArgReader {
-public:
-    ArgReader(int argc, char** argv) : argc_(argc), argv_(argv) {}
-    bool done() const { return i_ >= argc_; }
-    std::string_view take() { return argv_[i_++]; }
-    std::string_view value(std::string_view option) {
-        RASTER_REQUIRE(i_ < argc_, InvalidArgument, std::string(option) + " needs a value");
-        return argv_[i_++];
-    }
+// Adds `name` taking a whole number in [lo, hi], its default shown in --help.
+inline CLI::Option* addWholeNumber(CLI::App& command, const std::string& name, uint32_t& value, uint32_t lo,
+                                   uint32_t hi, const std::string& help) {
+    return command.add_option(name, value, help)
+        ->transform(CLI::Validator(wholeNumber, ""))
+        ->check(CLI::Range(lo, hi).description(""))
+        ->type_name("N in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]")
+        ->capture_default_str();
+}
 
-private:
-    int argc_;
-    char** argv_;
-    int i_ = 0;
-};
+// Reads "A<separator>B", two whole numbers each in [lo, hi], into out. Returns "" or what is wrong,
+// naming the half (first_name or second_name) that is.
+inline std::string readPair(std::string text, char separator, const char* first_name, const char* second_name,
+                            uint32_t lo, uint32_t hi, std::pair<uint32_t, uint32_t>& out) {
+    const size_t at = text.find(separator);
+    if (at == std::string::npos)
+        return "takes " + std::string(first_name) + separator + second_name + ", not '" + text + "'";
+    std::string halves[2] = {text.substr(0, at), text.substr(at + 1)};
+    const char* names[2] = {first_name, second_name};
+    uint32_t values[2] = {};
+    for (int i = 0; i < 2; ++i) {
+        std::string error = wholeNumber(halves[i]);
+        if (error.empty()) error = CLI::Range(lo, hi)(halves[i]);
+        if (!error.empty()) return std::string(names[i]) + " of '" + text + "': " + error;
+        values[i] = uint32_t(std::stoul(halves[i]));
+    }
+    out = {values[0], values[1]};
+    return "";
+}
+
+// Adds `name` taking "A<separator>B" (view --size WxH, trace --pixel X,Y); set(a, b) gets the pair.
+inline CLI::Option* addPair(CLI::App& command, const std::string& name, char separator,
+                            const char* first_name, const char* second_name, uint32_t lo, uint32_t hi,
+                            std::function<void(uint32_t, uint32_t)> set, const std::string& help) {
+    const auto read = [=](const std::string& text, std::pair<uint32_t, uint32_t>& out) {
+        return readPair(text, separator, first_name, second_name, lo, hi, out);
+    };
+    return command
+        .add_option_function<std::string>(
+            name,
+            [read, set](const std::string& text) {
+                std::pair<uint32_t, uint32_t> pair;
+                read(text, pair);
+                set(pair.first, pair.second);
+            },
+            help)
+        ->check([read](const std::string& text) {
+            std::pair<uint32_t, uint32_t> pair;
+            return read(text, pair);
+        })
+        ->type_name(std::string(first_name) + separator + second_name);
+}
+
+// A CLI::Validator from a function that throws Error for a bad value (parseScript, parseSolution):
+// the Error's message, without its code, becomes the option's.
+template <class Parse>
+CLI::Validator throwingCheck(Parse parse) {
+    return CLI::Validator(
+        [parse](std::string& text) -> std::string {
+            try {
+                parse(text);
+                return "";
+            } catch (const Error& e) {
+                const std::string message = e.what(), code = std::string(errorCodeName(e.code())) + ": ";
+                return message.starts_with(code) ? message.substr(code.size()) : message;
+            }
+        },
+        "");
+}
+
+// Adds a subcommand. A repeated option takes its last value, as getopt's programs do.
+inline CLI::App* addCommand(CLI::App& app, const std::string& name, const std::string& description) {
+    CLI::App* command = app.add_subcommand(name, description);
+    command->option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+    return command;
+}
+
+// The positional scene name: one of sceneNames() (the lecture's scenes, the labs, their solutions).
+inline CLI::Option* addSceneName(CLI::App& command, std::string& name) {
+    return command.add_option("scene", name, "particles, fog, or a lab (raster render --list)")
+        ->check(CLI::IsMember(sceneNames()));
+}
+
+// --width, --height: the image's size in pixels (bench, render, trace).
+inline void addSizeOptions(CLI::App& command, SceneOptions& options) {
+    addWholeNumber(command, "--width", options.width, 1, RenderTarget::kMaxSize, "image width in pixels");
+    addWholeNumber(command, "--height", options.height, 1, RenderTarget::kMaxSize, "image height in pixels");
+}
+
+// --count, --cubes, --fog: what the lecture's scenes hold (bench, trace, view).
+inline void addContentOptions(CLI::App& command, SceneOptions& options) {
+    addWholeNumber(command, "--count", options.count, 0, 50'000'000, "particles: the number of billboards");
+    addWholeNumber(command, "--cubes", options.cubes, 0, 1024, "fog: cubes per side of the grid");
+    command
+        .add_option_function<std::string>(
+            "--fog", [&options](const std::string& fog) { options.heightFog = fog == "height"; },
+            "fog: the fog model")
+        ->check(CLI::IsMember({"constant", "height"}))
+        ->default_str(options.heightFog ? "height" : "constant");
+}
+
+// --threads T: the Context's worker threads; unset, one per hardware thread.
+inline void addThreadsOption(CLI::App& command, uint32_t& threads) {
+    addWholeNumber(command, "--threads", threads, 1, 1024, "worker threads")->default_str("all cores");
+}
 
 }  // namespace raster::tools

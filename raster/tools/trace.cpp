@@ -4,7 +4,9 @@
 //                   test and blend (as a table, or with --json as one JSON object for tools)
 //   --draw N        draw N's geometry: input-assembler vertices, vertex and geometry shader
 //                   outputs, primitives after clipping and setup (the first --limit of each)
+#include <cstdint>
 #include <cstdio>
+#include <memory>
 #include <string>
 
 #include "commands.hpp"
@@ -13,92 +15,87 @@
 #include "raster/trace.hpp"
 
 namespace raster::tools {
-
 namespace {
 
-// "X,Y" → two coordinates.
-void parsePixel(std::string_view text, uint32_t& x, uint32_t& y) {
-    const size_t comma = text.find(',');
-    RASTER_REQUIRE(comma != std::string_view::npos, InvalidArgument,
-                   "--pixel takes X,Y (two whole numbers), not '" + std::string(text) + "'");
-    x = parseUint("--pixel X", text.substr(0, comma), 0, RenderTarget::kMaxSize - 1);
-    y = parseUint("--pixel Y", text.substr(comma + 1), 0, RenderTarget::kMaxSize - 1);
-}
-
-}  // namespace
-
-int trace(int argc, char** argv) {
-    ArgReader args(argc, argv);
-    const char* usage =
-        "usage: raster trace particles|fog [--stats] [--pixel X,Y [--json]] [--draw N [--limit K]]\n"
-        "                    [--width W] [--height H] [--count N] [--cubes M] [--fog constant|height]\n"
-        "                    [--threads T] [--reference]\n";
-    if (args.done()) {
-        std::fputs(usage, stderr);
-        return 2;
-    }
-    const std::string scene_name(args.take());
+struct TraceArgs {
+    std::string scene;
     SceneOptions options;
     uint32_t threads = 0, px = 0, py = 0, draw = 0, limit = 16;
-    bool reference = false, stats = false, pixel = false, json = false, geometry = false;
-    while (!args.done()) {
-        const std::string_view a = args.take();
-        if (a == "--stats") stats = true;
-        else if (a == "--pixel") pixel = true, parsePixel(args.value(a), px, py);
-        else if (a == "--json") json = true;
-        else if (a == "--draw") geometry = true, draw = parseUint(a, args.value(a), 0, UINT32_MAX - 1);
-        else if (a == "--limit") limit = parseUint(a, args.value(a), 0, 1u << 20);
-        else if (a == "--width") options.width = parseUint(a, args.value(a), 1, RenderTarget::kMaxSize);
-        else if (a == "--height") options.height = parseUint(a, args.value(a), 1, RenderTarget::kMaxSize);
-        else if (a == "--count") options.count = parseUint(a, args.value(a), 0, 50'000'000);
-        else if (a == "--cubes") options.cubes = parseUint(a, args.value(a), 0, 1024);
-        else if (a == "--threads") threads = parseUint(a, args.value(a), 1, 1024);
-        else if (a == "--reference") reference = true;
-        else if (a == "--fog") {
-            const std::string_view f = args.value(a);
-            RASTER_REQUIRE(f == "constant" || f == "height", InvalidArgument,
-                           "--fog takes constant or height, not '" + std::string(f) + "'");
-            options.heightFog = f == "height";
-        } else {
-            throw Error(ErrorCode::InvalidArgument, "unknown option '" + std::string(a) + "'\n" + usage);
-        }
-    }
-    RASTER_REQUIRE(stats || pixel || geometry, InvalidArgument,
-                   "raster trace needs --stats, --pixel X,Y or --draw N\n" + std::string(usage));
-    RASTER_REQUIRE(!json || pixel, InvalidArgument, "--json applies to --pixel");
-    RASTER_REQUIRE(!pixel || (px < options.width && py < options.height), InvalidArgument,
-                   "--pixel " + std::to_string(px) + "," + std::to_string(py) + " is outside the " +
-                       std::to_string(options.width) + "x" + std::to_string(options.height) + " target");
+    bool reference = false, stats = false, json = false;
+    bool pixel = false, geometry = false;  // --pixel, --draw given
+};
 
-    std::unique_ptr<Scene> scene = makeScene(scene_name, options);
-    Context context({threads, reference});
-    RenderTarget color(options.width, options.height);
-    DepthTarget depth(options.width, options.height);
-    TraceOptions trace_options;
-    if (pixel) trace_options.pixels = {int32_t(px), int32_t(py), int32_t(px), int32_t(py)};
-    trace_options.geometry = geometry;
-    trace_options.maxGeometryRecords = limit;
-    Trace trace(trace_options);
-    context.resetFrameStatistics();
-    if (pixel || geometry) context.setTrace(&trace);
-    scene->render(context, color, depth);
-
-    if (geometry) {
-        RASTER_REQUIRE(draw < trace.draws().size(), InvalidArgument,
-                       "--draw " + std::to_string(draw) + ": the frame has " + std::to_string(trace.draws().size()) +
-                           " draws (0.." + std::to_string(int64_t(trace.draws().size()) - 1) + ")");
-        std::printf("%s\n", formatDraw(trace.draws()[draw], limit).c_str());
+// What was asked for, printed after the traced render.
+void printTrace(const TraceArgs& args, const Context& context, const Trace& trace) {
+    if (args.geometry) {
+        if (args.draw >= trace.draws().size())
+            throw CLI::ValidationError("--draw " + std::to_string(args.draw) + ": the frame has " +
+                                       std::to_string(trace.draws().size()) + " draws (0.." +
+                                       std::to_string(int64_t(trace.draws().size()) - 1) + ")");
+        std::printf("%s\n", formatDraw(trace.draws()[args.draw], args.limit).c_str());
     }
-    if (stats) {
+    if (args.stats) {
         const auto& log = context.drawStatisticsLog();
         for (size_t i = 0; i < log.size(); ++i) std::printf("# draw %zu\n%s\n", i, log[i].toString().c_str());
         std::printf("# frame (%zu draws)\n%s", log.size(), context.frameStatistics().toString().c_str());
     }
-    if (pixel) std::fputs((json ? pixelHistoryJson(trace, int32_t(px), int32_t(py))
-                                : formatPixelHistory(trace, int32_t(px), int32_t(py)))
-                              .c_str(),
-                          stdout);
+    const int32_t x = int32_t(args.px), y = int32_t(args.py);
+    if (args.pixel)
+        std::fputs((args.json ? pixelHistoryJson(trace, x, y) : formatPixelHistory(trace, x, y)).c_str(),
+                   stdout);
+}
+
+int runTrace(const TraceArgs& args) {
+    const SceneOptions& options = args.options;
+    const bool pixel = args.pixel, geometry = args.geometry;
+    if (!args.stats && !pixel && !geometry)
+        throw CLI::RequiredError("one of --stats, --pixel X,Y or --draw N");
+    if (pixel && (args.px >= options.width || args.py >= options.height))
+        throw CLI::ValidationError("--pixel", std::to_string(args.px) + "," + std::to_string(args.py) +
+                                                  " is outside the " + std::to_string(options.width) + "x" +
+                                                  std::to_string(options.height) + " target");
+
+    std::unique_ptr<Scene> scene = makeScene(args.scene, options);
+    Context context({args.threads, args.reference});
+    RenderTarget color(options.width, options.height);
+    DepthTarget depth(options.width, options.height);
+    TraceOptions trace_options;
+    if (pixel)
+        trace_options.pixels = {int32_t(args.px), int32_t(args.py), int32_t(args.px), int32_t(args.py)};
+    trace_options.geometry = geometry;
+    trace_options.maxGeometryRecords = args.limit;
+    Trace trace(trace_options);
+    context.resetFrameStatistics();
+    if (pixel || geometry) context.setTrace(&trace);
+    scene->render(context, color, depth);
+    printTrace(args, context, trace);
     return 0;
+}
+
+}  // namespace
+
+Command addTrace(CLI::App& app) {
+    CLI::App* command = addCommand(app, "trace", "render one frame with the pipeline trace on and print it");
+    auto args = std::make_shared<TraceArgs>();
+    addSceneName(*command, args->scene)->required();
+    command->add_flag("--stats", args->stats, "the pipeline statistics of each draw and of the frame");
+    CLI::Option* pixel = addPair(
+        *command, "--pixel", ',', "X", "Y", 0, RenderTarget::kMaxSize - 1,
+        [args](uint32_t x, uint32_t y) { args->px = x, args->py = y; },
+        "the pixel's history: every fragment that reached it, in order");
+    command->add_flag("--json", args->json, "--pixel's history as one JSON object")->needs(pixel);
+    CLI::Option* draw = addWholeNumber(*command, "--draw", args->draw, 0, UINT32_MAX - 1,
+                                       "draw N's geometry, stage by stage (draws count from 0)");
+    addWholeNumber(*command, "--limit", args->limit, 0, 1u << 20, "--draw: the records listed of each stage");
+    addSizeOptions(*command, args->options);
+    addContentOptions(*command, args->options);
+    addThreadsOption(*command, args->threads);
+    command->add_flag("--reference", args->reference, "run the reference pipeline");
+    return {command, [args, pixel, draw] {
+                args->pixel = pixel->count() > 0;
+                args->geometry = draw->count() > 0;
+                return runTrace(*args);
+            }};
 }
 
 }  // namespace raster::tools

@@ -1,0 +1,199 @@
+#!/usr/bin/env bash
+# raster's command line: every option of every subcommand refuses a bad value (out of range, not a
+# number, not one of its choices, missing) with exit status 2 and a message naming the option and
+# the value; --help works for each subcommand and lists its options; an unknown option or
+# subcommand is refused; good values still work; an error while running (out of memory too) exits 1
+# and keeps the files already written.
+#   bash tests/cli_test.sh build/bin/raster
+set -euo pipefail
+raster=$1
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+fail() {
+  echo "FAIL: $*" >&2
+  exit 1
+}
+checked=0
+
+# run STATUS ARGS...: runs raster ARGS (stdout in $tmp/out, stderr in $tmp/err) and expects STATUS.
+run() {
+  local want=$1 status=0
+  shift
+  "$raster" "$@" >"$tmp/out" 2>"$tmp/err" || status=$?
+  [[ $status == "$want" ]] || fail "raster $*: exit status $status, not $want; stderr: $(cat "$tmp/err")"
+  checked=$((checked + 1))
+}
+# says TEXT: stderr holds TEXT.
+says() {
+  grep -qF -- "$1" "$tmp/err" || fail "stderr does not say '$1': $(cat "$tmp/err")"
+}
+# bad OPTION VALUE ARGS...: raster ARGS is a usage error (2) whose message names OPTION and VALUE
+# (VALUE empty: a missing value, not checked).
+bad() {
+  local option=$1 value=$2
+  shift 2
+  run 2 "$@"
+  says "$option"
+  [[ -z $value ]] || says "$value"
+}
+
+# ---- Values out of range, not numbers, not among the choices, missing ---------------------------
+# Whole decimal numbers only (one parser for all the numeric options).
+for value in -1 0x10 +5 1.5 1e3 " 5" ""; do bad --width "$value" bench particles --width "$value"; done
+# An option for a value: taken as the value, and refused as one.
+bad --height --width render fog --height --width 64
+for command in "bench particles" "trace particles --stats" "render fog"; do
+  # shellcheck disable=SC2086  # $command is the subcommand and its first arguments
+  {
+    bad --width 0 $command --width 0
+    bad --width 16385 $command --width 16385
+    bad --width abc $command --width abc
+    bad --width "" $command --width
+    bad --height 0 $command --height 0
+    bad --height x $command --height x
+    bad --height "" $command --height
+  }
+done
+for command in "bench particles" "trace particles --stats" "view particles"; do
+  # shellcheck disable=SC2086
+  {
+    bad --count 50000001 $command --count 50000001
+    bad --count ten $command --count ten
+    bad --count "" $command --count
+    bad --cubes 1025 $command --cubes 1025
+    bad --cubes x $command --cubes x
+    bad --cubes "" $command --cubes
+    bad --fog thick $command --fog thick
+    bad --fog "" $command --fog
+    bad --threads 0 $command --threads 0
+    bad --threads 1025 $command --threads 1025
+    bad --threads "" $command --threads
+    bad --reference maybe $command --reference=maybe
+  }
+done
+bad --frames 0 bench particles --frames 0
+bad --frames 100001 bench particles --frames 100001
+bad --frames "" bench particles --frames
+bad --out "" bench particles --out
+bad --texture "" bench particles --texture
+bad --no-error maybe bench particles --no-error=maybe
+
+bad --out-dir "" render fog --out-dir
+bad --list maybe render --list=maybe
+bad --view maybe render fog --view=maybe
+
+bad --pixel 160 trace particles --pixel 160
+bad --pixel a,b trace particles --pixel a,b
+bad --pixel -1,2 trace particles --pixel -1,2
+bad --pixel 16384,0 trace particles --pixel 16384,0
+bad --pixel "" trace particles --pixel
+bad --pixel 999,999 trace particles --width 320 --height 180 --pixel 999,999
+says 320x180
+bad --draw x trace particles --draw x
+bad --draw 4294967295 trace particles --draw 4294967295
+bad --draw "" trace particles --draw
+bad --limit 1048577 trace particles --draw 0 --limit 1048577
+bad --limit "" trace particles --draw 0 --limit
+bad --json "" trace particles --stats --json
+bad --stats "" trace particles
+bad --stats maybe trace particles --stats=maybe
+
+bad --size 0x10 view particles --size 0x10
+bad --size 320 view particles --size 320
+bad --size 320x view particles --size 320x
+bad --size 16385x10 view particles --size 16385x10
+bad --size "" view particles --size
+bad --script Z view particles --script "N ] Z"
+bad --script "" view particles --script
+bad --screenshot-dir "''" view particles --screenshot-dir ""
+bad --screenshot-dir "" view particles --screenshot-dir
+bad --solution smoke view particles --solution smoke
+bad --solution lab.jpg view particles --solution lab.jpg
+bad --solution "''" view particles --solution ""
+bad --solution "" view particles --solution
+bad --headless maybe view particles --headless=maybe
+bad --screenshot-window maybe view particles --screenshot-window=maybe
+
+# The scene: missing or unknown.
+for command in bench trace view; do
+  bad scene "" "$command"
+  bad scene smoke "$command" smoke
+done
+bad scene smoke render fog smoke
+# microbench hands its arguments to Google Benchmark, which refuses what it does not know.
+bad --bogus "" microbench --bogus
+
+# ---- Unknown options and subcommands ------------------------------------------------------------
+for command in "bench particles" "render fog" "trace particles --stats" "view particles"; do
+  # shellcheck disable=SC2086
+  bad --bogus "" $command --bogus
+  # shellcheck disable=SC2086
+  bad -x "" $command -x
+done
+bad smoke "" smoke
+says "raster --help lists the commands"
+bad --bogus "" --bogus
+run 2
+says "Subcommands:"
+
+# ---- --help: exit 0, every option listed ----------------------------------------------------------
+# helps COMMAND OPTION...: raster COMMAND --help lists each OPTION.
+helps() {
+  local command=$1
+  shift
+  run 0 "$command" --help
+  for option in "$@"; do
+    grep -qF -- "$option" "$tmp/out" || fail "raster $command --help does not list $option"
+  done
+}
+helps bench --width --height --count --cubes --fog --texture --frames --threads --out --reference --no-error
+helps render --out-dir --width --height --reference --view --list
+helps trace --stats --pixel --json --draw --limit --width --height --count --cubes --fog --threads --reference
+helps view --size --count --cubes --fog --threads --reference --headless --script --screenshot-dir \
+  --screenshot-window --solution "keys:"
+helps microbench --benchmark_filter "Google Benchmark"
+run 0 --help
+for command in bench microbench render trace view; do grep -q "^  $command " "$tmp/out" || fail "raster --help lacks $command"; done
+run 0 help
+grep -q "^  view " "$tmp/out" || fail "raster help lacks view"
+
+# ---- Good values still work -------------------------------------------------------------------------
+# png_size FILE: "WxH" from the PNG's IHDR (width, height at bytes 16..23).
+png_size() {
+  local hex
+  hex=$(od -An -tx1 -j16 -N8 "$1" | tr -d ' \n')
+  echo "$((16#${hex:0:8}))x$((16#${hex:8:8}))"
+}
+run 0 render fog --width 64 --height 48 --out-dir "$tmp/png"
+[[ $(png_size "$tmp/png/fog.png") == 64x48 ]] || fail "render fog --width 64 --height 48 wrote $(png_size "$tmp/png/fog.png")"
+# Leading zeros are decimal, and a repeated option takes its last value.
+run 0 render fog --width 010 --height 32 --height 008 --out-dir "$tmp/png"
+[[ $(png_size "$tmp/png/fog.png") == 10x8 ]] || fail "--width 010 --height 32 --height 008 wrote $(png_size "$tmp/png/fog.png")"
+run 0 bench fog --width 64 --height 36 --frames 1 --no-error --cubes 2 --fog constant
+grep -q '^raster fog 64x36 ms_per_frame_median=[0-9.]* frames=1$' "$tmp/out" || fail "bench printed: $(cat "$tmp/out")"
+run 0 trace particles --count 20 --width 64 --height 36 --pixel 32,18 --json --threads 1
+grep -q '^{"pixel":\[32,18\]' "$tmp/out" || fail "trace --pixel 32,18 --json printed: $(head -c 200 "$tmp/out")"
+run 0 render --list
+grep -q '^particles ' "$tmp/out" || fail "render --list lacks particles"
+SDL_VIDEODRIVER=offscreen run 0 view particles --headless --size 64x36 --count 20 --script "N S" \
+  --screenshot-dir "$tmp/shots"
+[[ $(png_size "$tmp/shots/particles-0001.png") == 64x36 ]] || fail "view --size 64x36 saved another size"
+
+# ---- Errors while running: exit 1; what was written stays ----------------------------------------
+run 1 bench particles --width 64 --height 36 --texture "$tmp/missing.png"
+says "raster bench: bad file: "
+mkdir -p "$tmp/keep/fog.png"  # a directory where render wants to write fog's PNG
+run 1 render particles fog --width 32 --height 18 --out-dir "$tmp/keep"
+says "raster render: "
+[[ $(png_size "$tmp/keep/particles.png") == 32x18 ]] || fail "render lost particles.png after fog's error"
+grep -qF "wrote $tmp/keep/particles.png" "$tmp/out" || fail "render did not say it wrote particles.png"
+# Out of memory (a 16384x16384 target under a 1 GB address-space limit) is an error, not a crash.
+# AddressSanitizer reserves far more address space than that: skipped in such a build.
+if ! grep -qa __asan_init "$raster"; then
+  (
+    ulimit -v 1000000
+    run 1 render fog --width 16384 --height 16384 --out-dir "$tmp/big"
+  )
+  grep -qi "^raster render: out of memory" "$tmp/err" || fail "no out-of-memory message: $(cat "$tmp/err")"
+fi
+echo "raster CLI: $checked command lines checked"
