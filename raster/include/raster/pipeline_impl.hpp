@@ -735,9 +735,14 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
                     [[maybe_unused]] bool rows_in_front = false;
                     [[maybe_unused]] auto passing = [&](int32_t x, int32_t y, uint32_t covered) -> uint32_t {
                         uint32_t live = covered;
-                        if constexpr (!kAllPass) {
-                            if (!rows_in_front) live &= depth_here.testWide(x, y, z8);
-                            passed += uint64_t(std::popcount(live));
+                        // Depth::kWide first, which kAllPass implies when false: the test inside names
+                        // testWide, which not every Depth has, and clang rejects it in a discarded
+                        // branch whose condition depends on InFront (ill-formed, no diagnostic required).
+                        if constexpr (Depth::kWide) {
+                            if constexpr (!kAllPass) {
+                                if (!rows_in_front) live &= depth_here.testWide(x, y, z8);
+                                passed += uint64_t(std::popcount(live));
+                            }
                         }
                         return live;
                     };
