@@ -131,12 +131,28 @@ TEST(ImageIo, GarbageIsBadFileNamingName) {
     EXPECT_NE(message.find("no bytes"), std::string::npos) << message;
 }
 
+TEST(ImageIo, EmptyIdatChunksAreSkipped) {
+    // An empty IDAT before the data (valid PNG), which stb_image 2.27 reads with memcpy(nullptr, ..., 0).
+    const std::vector<uint8_t> png = smallPng();
+    std::vector<uint8_t> empty_idat = {0, 0, 0, 0, 'I', 'D', 'A', 'T'};
+    put32(empty_idat, crc32(empty_idat.data() + 4, 4));
+    const size_t after_ihdr = 8 + 12 + 13;
+    std::vector<uint8_t> with_empty(png.begin(), png.begin() + std::ptrdiff_t(after_ihdr));
+    with_empty.insert(with_empty.end(), empty_idat.begin(), empty_idat.end());
+    with_empty.insert(with_empty.end(), png.begin() + std::ptrdiff_t(after_ihdr), png.end());
+    with_empty.insert(with_empty.end() - 12, empty_idat.begin(), empty_idat.end());  // and one before IEND
+    const ImageRgba8 image = decodeImageRgba8(with_empty, "empty idat");
+    EXPECT_EQ(image.width, 3u);
+    EXPECT_EQ(image.height, 2u);
+    EXPECT_EQ(image.pixels, smallPicture());
+}
+
 TEST(ImageIo, OtherFormatsAreBadFile) {
     // stb_image's other decoders are not compiled in (image_io.cpp): a valid 2x2 PPM and 1x1 BMP.
     const std::string ppm = "P6\n2 2\n255\n0123456789AB";
-    const std::vector<uint8_t> bmp = {'B', 'M', 58, 0, 0, 0, 0, 0, 0, 0, 54, 0, 0, 0, 40, 0, 0, 0, 1, 0,
-                                      0,   0,   1,  0, 0, 0, 1, 0, 24, 0, 0, 0, 0, 0,  4, 0, 0, 0, 0, 0,
-                                      0,   0,   0,  0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,  1, 2, 3, 0};
+    const std::vector<uint8_t> bmp = {'B', 'M', 58, 0, 0, 0, 0, 0, 0,  0, 54, 0, 0, 0, 40, 0, 0, 0, 1, 0,
+                                      0,   0,   1,  0, 0, 0, 1, 0, 24, 0, 0,  0, 0, 0, 4,  0, 0, 0, 0, 0,
+                                      0,   0,   0,  0, 0, 0, 0, 0, 0,  0, 0,  0, 0, 0, 1,  2, 3, 0};
     std::string message;
     EXPECT_EQ(errorCodeOf([&] { decodeImageRgba8(std::vector<uint8_t>(ppm.begin(), ppm.end()), "a.ppm"); },
                           &message),

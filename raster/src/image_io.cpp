@@ -1,5 +1,6 @@
 #include "raster/image_io.hpp"
 
+#include <algorithm>
 #include <climits>
 #include <cstdio>
 #include <memory>
@@ -28,12 +29,40 @@ std::string sizeText(uint64_t width, uint64_t height) {
     return std::to_string(width) + "x" + std::to_string(height);
 }
 
+uint32_t bigEndian32(const uint8_t* p) {
+    return uint32_t(p[0]) << 24 | uint32_t(p[1]) << 16 | uint32_t(p[2]) << 8 | uint32_t(p[3]);
+}
+
+// The PNG without its empty IDAT chunks, or nothing if it has none (or is no PNG). Why: they hold
+// no data, and stb_image 2.27 reads an empty first IDAT with memcpy(nullptr, ..., 0), undefined
+// behaviour (found by fuzz_png). Chunks are walked as far as they are whole; the rest is kept.
+std::vector<uint8_t> withoutEmptyIdat(std::span<const uint8_t> png) {
+    static const uint8_t kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+    if (png.size() < 8 || !std::equal(kSignature, kSignature + 8, png.begin())) return {};
+    std::vector<uint8_t> out;
+    size_t at = 8, kept = 0;  // png[kept, at) is still to copy when an empty IDAT is dropped
+    while (png.size() - at >= 12) {
+        const uint64_t length = bigEndian32(&png[at]);
+        if (length > png.size() - at - 12) break;
+        if (length == 0 && std::equal(&png[at + 4], &png[at + 8], "IDAT")) {
+            out.insert(out.end(), png.begin() + std::ptrdiff_t(kept), png.begin() + std::ptrdiff_t(at));
+            kept = at + 12;
+        }
+        at += 12 + size_t(length);
+    }
+    if (kept == 0) return {};
+    out.insert(out.end(), png.begin() + std::ptrdiff_t(kept), png.end());
+    return out;
+}
+
 }  // namespace
 
 ImageRgba8 decodeImageRgba8(std::span<const uint8_t> bytes, const std::string& name) {
     RASTER_REQUIRE(bytes.size() <= size_t(INT_MAX), BadFile,
                    "cannot read image '" + name + "': " + std::to_string(bytes.size()) +
                        " bytes, more than stb_image reads");
+    const std::vector<uint8_t> cleaned = withoutEmptyIdat(bytes);
+    if (!cleaned.empty()) bytes = cleaned;
     const int length = int(bytes.size());
     // The size from the header first: stb_image allocates the whole image before it decodes.
     int w = 0, h = 0, n = 0;
