@@ -1,8 +1,17 @@
 #include "raster/image_io.hpp"
 
+#include <algorithm>
+#include <climits>
+#include <cstdio>
+#include <memory>
+
 #include "raster/check.hpp"
 
+// PNG only: the project reads nothing else, and each of stb_image's other decoders is more code
+// that a file can reach. (fuzz_png found one: Debian 12's stb_image 2.27 overflows a signed int
+// parsing a PNM header, `P6 2 3333333333 255`, undefined behaviour that 2.28 fixes.)
 #define STB_IMAGE_IMPLEMENTATION
+#define STBI_ONLY_PNG
 #define STBI_FAILURE_USERMSG
 #include <stb/stb_image.h>
 #define STB_IMAGE_WRITE_IMPLEMENTATION
@@ -10,23 +19,100 @@
 
 namespace raster {
 
-ImageRgba8 readImageRgba8(const std::string& path) {
+namespace {
+
+std::string stbReason() {
+    return stbi_failure_reason() ? stbi_failure_reason() : "?";
+}
+
+std::string sizeText(uint64_t width, uint64_t height) {
+    return std::to_string(width) + "x" + std::to_string(height);
+}
+
+uint32_t bigEndian32(const uint8_t* p) {
+    return uint32_t(p[0]) << 24 | uint32_t(p[1]) << 16 | uint32_t(p[2]) << 8 | uint32_t(p[3]);
+}
+
+// The PNG without its empty IDAT chunks, or nothing if it has none (or is no PNG). Why: they hold
+// no data, and stb_image 2.27 reads an empty first IDAT with memcpy(nullptr, ..., 0), undefined
+// behaviour (found by fuzz_png). Chunks are walked as far as they are whole; the rest is kept.
+std::vector<uint8_t> withoutEmptyIdat(std::span<const uint8_t> png) {
+    static const uint8_t kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+    if (png.size() < 8 || !std::equal(kSignature, kSignature + 8, png.begin())) return {};
+    std::vector<uint8_t> out;
+    size_t at = 8, kept = 0;  // png[kept, at) is still to copy when an empty IDAT is dropped
+    while (png.size() - at >= 12) {
+        const uint64_t length = bigEndian32(&png[at]);
+        if (length > png.size() - at - 12) break;
+        if (length == 0 && std::equal(&png[at + 4], &png[at + 8], "IDAT")) {
+            out.insert(out.end(), png.begin() + std::ptrdiff_t(kept), png.begin() + std::ptrdiff_t(at));
+            kept = at + 12;
+        }
+        at += 12 + size_t(length);
+    }
+    if (kept == 0) return {};
+    out.insert(out.end(), png.begin() + std::ptrdiff_t(kept), png.end());
+    return out;
+}
+
+}  // namespace
+
+ImageRgba8 decodeImageRgba8(std::span<const uint8_t> bytes, const std::string& name) {
+    RASTER_REQUIRE(bytes.size() <= size_t(INT_MAX), BadFile,
+                   "cannot read image '" + name + "': " + std::to_string(bytes.size()) +
+                       " bytes, more than stb_image reads");
+    const std::vector<uint8_t> cleaned = withoutEmptyIdat(bytes);
+    if (!cleaned.empty()) bytes = cleaned;
+    const int length = int(bytes.size());
+    // The size from the header first: stb_image allocates the whole image before it decodes.
     int w = 0, h = 0, n = 0;
-    unsigned char* data = stbi_load(path.c_str(), &w, &h, &n, 4);
-    RASTER_REQUIRE(data != nullptr, BadFile,
-                   "cannot read image '" + path + "': " + (stbi_failure_reason() ? stbi_failure_reason() : "?"));
+    RASTER_REQUIRE(stbi_info_from_memory(bytes.data(), length, &w, &h, &n) != 0, BadFile,
+                   "cannot read image '" + name + "': " + stbReason());
+    RASTER_REQUIRE(w > 0 && h > 0 && uint32_t(w) <= kMaxImageSide && uint32_t(h) <= kMaxImageSide &&
+                       uint64_t(w) * uint64_t(h) <= kMaxImagePixels,
+                   BadFile,
+                   "image '" + name + "' is " + sizeText(uint32_t(w), uint32_t(h)) + ", over the limit of " +
+                       std::to_string(kMaxImageSide) + " pixels a side and " +
+                       std::to_string(kMaxImagePixels) + " pixels in all");
+    const std::unique_ptr<unsigned char, void (*)(void*)> data(
+        stbi_load_from_memory(bytes.data(), length, &w, &h, &n, 4), stbi_image_free);
+    RASTER_REQUIRE(data != nullptr, BadFile, "cannot read image '" + name + "': " + stbReason());
+    // The decoder's size is the header's; checked again so that nothing below can rest on a mismatch.
+    RASTER_REQUIRE(w > 0 && h > 0 && uint32_t(w) <= kMaxImageSide && uint32_t(h) <= kMaxImageSide &&
+                       uint64_t(w) * uint64_t(h) <= kMaxImagePixels,
+                   BadFile, "image '" + name + "' decoded as " + sizeText(uint32_t(w), uint32_t(h)));
     ImageRgba8 image;
     image.width = uint32_t(w);
     image.height = uint32_t(h);
-    image.pixels.assign(data, data + size_t(w) * h * 4);
-    stbi_image_free(data);
+    image.pixels.assign(data.get(), data.get() + size_t(w) * size_t(h) * 4);
     return image;
 }
 
-void writePngRgba8(const std::string& path, uint32_t width, uint32_t height, const std::vector<uint8_t>& rgba) {
-    RASTER_REQUIRE(rgba.size() == size_t(width) * height * 4 && width > 0 && height > 0, InvalidArgument,
+ImageRgba8 readImageRgba8(const std::string& path) {
+    const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), std::fclose);
+    RASTER_REQUIRE(file != nullptr, BadFile, "cannot read image '" + path + "': can't fopen");
+    std::vector<uint8_t> bytes;
+    uint8_t block[1 << 16];
+    for (size_t got; (got = std::fread(block, 1, sizeof block, file.get())) > 0;) {
+        bytes.insert(bytes.end(), block, block + got);
+        RASTER_REQUIRE(bytes.size() <= size_t(INT_MAX), BadFile,
+                       "cannot read image '" + path + "': larger than stb_image reads");
+    }
+    RASTER_REQUIRE(!std::ferror(file.get()), BadFile, "cannot read image '" + path + "': read error");
+    return decodeImageRgba8(bytes, path);
+}
+
+void writePngRgba8(const std::string& path, uint32_t width, uint32_t height,
+                   const std::vector<uint8_t>& rgba) {
+    RASTER_REQUIRE(width > 0 && height > 0, InvalidArgument,
+                   "cannot write PNG '" + path + "': the image is " + sizeText(width, height) + " (empty)");
+    RASTER_REQUIRE(rgba.size() == size_t(width) * height * 4, InvalidArgument,
                    "image for '" + path + "' has " + std::to_string(rgba.size()) + " bytes, not " +
-                       std::to_string(size_t(width) * height * 4));
+                       std::to_string(size_t(width) * height * 4) + " (" + sizeText(width, height) +
+                       " RGBA8)");
+    RASTER_REQUIRE(width <= uint32_t(INT_MAX / 4) && height <= uint32_t(INT_MAX), InvalidArgument,
+                   "cannot write PNG '" + path + "': the image is " + sizeText(width, height) +
+                       ", larger than stb_image_write writes");
     const int ok = stbi_write_png(path.c_str(), int(width), int(height), 4, rgba.data(), int(width) * 4);
     RASTER_REQUIRE(ok != 0, BadFile, "cannot write PNG '" + path + "'");
 }

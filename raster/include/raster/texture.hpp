@@ -89,10 +89,10 @@ class Texture2D {
                                bool mipmaps = false);
     static Texture2D fromRgba32f(uint32_t width, uint32_t height, std::span<const float> rgba,
                                  bool mipmaps = false);
-    // An image file (anything stb_image reads, expanded to RGBA8) stored as `format`: R8G8B8A8_UNORM
+    // A PNG file (any colour type and bit depth, expanded to RGBA8) stored as `format`: R8G8B8A8_UNORM
     // keeps the bytes, R32G32B32A32_FLOAT stores n/255. Throws Error(BadFile) naming the path if the
-    // file is missing, unreadable or corrupt, and Error(InvalidArgument) for any other format or an
-    // image larger than kMaxSize.
+    // file is missing, unreadable or corrupt or its header is over image_io.hpp's size limit (more
+    // than kMaxSize a side among them), and Error(InvalidArgument) for any other format.
     static Texture2D fromPng(const std::string& path, Format format = Format::R8G8B8A8_UNORM,
                              bool mipmaps = false);
 
@@ -607,7 +607,11 @@ template <int N>
         const uint8_t* f = footprints_.data();
         const __m512i bytes = _mm512_slli_epi32(index, 4);
         __m128i quarter[4];
-        for (int q = 0; q < 4; ++q) quarter[q] = _mm512_extracti32x4_epi32(bytes, q);
+        // Written out: the quarter is an immediate, which clang wants a constant (GCC unrolls a loop).
+        quarter[0] = _mm512_extracti32x4_epi32(bytes, 0);
+        quarter[1] = _mm512_extracti32x4_epi32(bytes, 1);
+        quarter[2] = _mm512_extracti32x4_epi32(bytes, 2);
+        quarter[3] = _mm512_extracti32x4_epi32(bytes, 3);
         auto load = [&](__m128i q, auto lane) {
             return _mm_loadu_si128(
                 reinterpret_cast<const __m128i*>(f + uint32_t(_mm_extract_epi32(q, decltype(lane)::value))));
