@@ -420,7 +420,9 @@ TEST(TextureAlphaSpans, UniteTakesTheLeastFirstAndTheGreatestLast) {
 // and without a power of two of rows, rows transparent throughout, one-texel textures.
 TEST(TextureAlphaSpans, RowsAndEveryRunOfRowsMatchAScan) {
     std::mt19937 rng(11);
-    for (const auto& [w, h] : {std::pair{1u, 1u}, {1u, 9u}, {9u, 1u}, {7u, 13u}, {16u, 16u}, {5u, 33u}, {64u, 64u}}) {
+    for (const auto& size : {std::pair{1u, 1u}, {1u, 9u}, {9u, 1u}, {7u, 13u}, {16u, 16u}, {5u, 33u}, {64u, 64u}}) {
+        // Not a structured binding: the lambda below captures w, which clang 14 cannot (P1091).
+        const uint32_t w = size.first, h = size.second;
         std::vector<float> rgba(size_t(w) * h * 4, 1.0f);
         for (uint32_t y = 0; y < h; ++y) {
             const bool clear_row = rng() % 4 == 0;
