@@ -197,6 +197,17 @@ TEST(ImageIo, OversizedHeaderIsBadFileBeforeDecoding) {
     EXPECT_NE(message.find("over the limit"), std::string::npos) << message;
 }
 
+TEST(ImageIo, ChunkLongerThanTheFileIsBadFileBeforeDecoding) {
+    // An IDAT claiming 1.2 GB in a file of a few dozen bytes: stb_image would allocate it first.
+    std::vector<uint8_t> png = pngHeader(6, 5);
+    put32(png, 1162757449);
+    png.insert(png.end(), {'I', 'D', 'A', 'T', 0x78, 0xDA, 1, 2, 3, 4, 5, 6, 7, 8});
+    std::string message;
+    EXPECT_EQ(errorCodeOf([&] { decodeImageRgba8(png, "long.png"); }, &message), ErrorCode::BadFile);
+    EXPECT_NE(message.find("long.png"), std::string::npos) << message;
+    EXPECT_NE(message.find("IDAT chunk at byte 33 claims 1162757449 bytes"), std::string::npos) << message;
+}
+
 TEST(ImageIo, MissingFileIsBadFileNamingPath) {
     const std::string path = "/nonexistent/raster/no_such_image.png";
     std::string message;

@@ -33,22 +33,31 @@ uint32_t bigEndian32(const uint8_t* p) {
     return uint32_t(p[0]) << 24 | uint32_t(p[1]) << 16 | uint32_t(p[2]) << 8 | uint32_t(p[3]);
 }
 
-// The PNG without its empty IDAT chunks, or nothing if it has none (or is no PNG). Why: they hold
-// no data, and stb_image 2.27 reads an empty first IDAT with memcpy(nullptr, ..., 0), undefined
-// behaviour (found by fuzz_png). Chunks are walked as far as they are whole; the rest is kept.
-std::vector<uint8_t> withoutEmptyIdat(std::span<const uint8_t> png) {
+// The PNG's chunks walked before stb_image reads them, for what it does not check in time:
+//  - a chunk whose length runs past the end of the bytes is refused (stb allocates an IDAT's length,
+//    rounded up to a power of two, before it reads the data: 229 bytes asked for 2 GiB, fuzz_png);
+//  - empty IDAT chunks are dropped (they hold no data, and stb 2.27 reads an empty first one with
+//    memcpy(nullptr, ..., 0), undefined behaviour that fuzz_png found).
+// Returns the PNG without its empty IDATs, or nothing if it has none (or the bytes are no PNG).
+// The walk ends at IEND; what follows it is kept as it is.
+std::vector<uint8_t> checkedPng(std::span<const uint8_t> png, const std::string& name) {
     static const uint8_t kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
     if (png.size() < 8 || !std::equal(kSignature, kSignature + 8, png.begin())) return {};
     std::vector<uint8_t> out;
     size_t at = 8, kept = 0;  // png[kept, at) is still to copy when an empty IDAT is dropped
-    while (png.size() - at >= 12) {
+    while (png.size() - at >= 8) {
         const uint64_t length = bigEndian32(&png[at]);
-        if (length > png.size() - at - 12) break;
-        if (length == 0 && std::equal(&png[at + 4], &png[at + 8], "IDAT")) {
+        const uint8_t* type = &png[at + 4];
+        RASTER_REQUIRE(png.size() - at >= 12 && length <= png.size() - at - 12, BadFile,
+                       "cannot read image '" + name + "': its " + std::string(type, type + 4) +
+                           " chunk at byte " + std::to_string(at) + " claims " + std::to_string(length) +
+                           " bytes, past the end of the " + std::to_string(png.size()) + "-byte file");
+        if (length == 0 && std::equal(type, type + 4, "IDAT")) {
             out.insert(out.end(), png.begin() + std::ptrdiff_t(kept), png.begin() + std::ptrdiff_t(at));
             kept = at + 12;
         }
         at += 12 + size_t(length);
+        if (std::equal(type, type + 4, "IEND")) break;
     }
     if (kept == 0) return {};
     out.insert(out.end(), png.begin() + std::ptrdiff_t(kept), png.end());
@@ -61,7 +70,7 @@ ImageRgba8 decodeImageRgba8(std::span<const uint8_t> bytes, const std::string& n
     RASTER_REQUIRE(bytes.size() <= size_t(INT_MAX), BadFile,
                    "cannot read image '" + name + "': " + std::to_string(bytes.size()) +
                        " bytes, more than stb_image reads");
-    const std::vector<uint8_t> cleaned = withoutEmptyIdat(bytes);
+    const std::vector<uint8_t> cleaned = checkedPng(bytes, name);
     if (!cleaned.empty()) bytes = cleaned;
     const int length = int(bytes.size());
     // The size from the header first: stb_image allocates the whole image before it decodes.
