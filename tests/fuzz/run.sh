@@ -62,7 +62,7 @@ for t in "${targets[@]}"; do
     ls -1 "$artifacts" | sed "s|^|run.sh:   $artifacts/|"
   fi
   if ((merge)); then
-    nice -n 10 "$bin" -merge=1 -timeout=10 -rss_limit_mb=2048 -max_len="${max_len[$t]}" \
+    nice -n 10 "$bin" -merge=1 -timeout=10 -rss_limit_mb=2048 -max_len="${max_len[$t]}" -artifact_prefix="$artifacts/" \
       "$corpus" "$scratch" >"$build/fuzz-$t-merge.log" 2>&1 || { echo "run.sh: merge of $t failed" >&2; failed=1; }
     echo "run.sh: $t corpus now $(ls "$corpus" | wc -l) files, $(du -sk "$corpus" | cut -f1) KB"
   fi
