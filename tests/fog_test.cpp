@@ -114,6 +114,38 @@ TEST(FogMedium, NoDistanceIsNoFogWhateverTheDensity) {
     for (int i = 0; i < 8; ++i) EXPECT_EQ(tau8[i], 0.0f);
 }
 
+// Found by fuzz_fog on the first stable form (tests/fuzz, docs/RELIABILITY.md): e^{b·y0} close to
+// float's ends, times a distance or an e^{k·s} − 1 that overflows before the other factor brings the
+// product back. With the exponents combined, τ and L are finite and match long double.
+TEST(FogMedium, ExponentsNearTheEndsOfFloatDoNotOverflowInBetween) {
+    struct Case {
+        float b, y0, dy, s, sigma;
+    };
+    // e^{87}·s overflows (s = 3.5e5) though τ = e^{87}/|k|; e^{72.9}·s (s = 1e7) likewise, with
+    // σ·τ = 0.46; e^{−87} (still a float) times e^{107} − 1 (not one): τ = 4.9e8, σ·τ = 2.4e-22.
+    for (const Case& c : {Case{1.0f, 87.0f, -1.0f, 3.5e5f, 1e-38f}, Case{0.1f, 729.0f, -1.0f, 1e7f, 1e-33f},
+                          Case{1.0f, -87.0f, 1.0f, 107.0f, 5e-31f}}) {
+        FogMedium fog;
+        fog.b = c.b;
+        fog.sigma = glm::vec3(c.sigma);
+        fog.q = glm::vec3(c.sigma * 0.5f);
+        const long double tau_ref = referenceDepth(fog, c.y0, c.dy, c.s);
+        const glm::vec3 L0(0.441f, 0.2f, 0.9f);
+        for (const bool reference_mode : {false, true}) {
+            detail::tReferenceMode = reference_mode;
+            const float tau = fog.opticalDepth(c.y0, c.dy, c.s);
+            const Float8 tau8 = fog.opticalDepth<Float8>(c.y0, Float8(c.dy), Float8(c.s));
+            const glm::vec3 L = apply(fog, L0, c.y0, glm::vec3(0.0f, c.dy, 0.0f), c.s);
+            detail::tReferenceMode = false;
+            ASSERT_TRUE(std::isfinite(tau)) << c.y0 << " reference mode " << reference_mode;
+            EXPECT_NEAR(double(tau / tau_ref), 1.0, 1e-5) << c.y0;
+            if (!reference_mode) EXPECT_EQ(tau8[4], tau) << "eight-wide equals scalar";
+            for (int ch = 0; ch < 3; ++ch)
+                EXPECT_NEAR(L[ch], double(referenceRadiance(fog, ch, L0[ch], tau_ref)), 1e-6) << c.y0 << " " << ch;
+        }
+    }
+}
+
 // Every finite input of a grid spanning the domain (thin to opaque fog, eye below the ground to
 // 180 m, every direction, s from 0 to 10 km): finite, within a few ulp times the condition number
 // of the long-double value, and the eight-wide path bit for bit the scalar one.

@@ -546,6 +546,20 @@ TEST(FastMath, LimitsAndSpecialValues) {
     for (float x : {-17.0f, -19.99f}) EXPECT_LE(ulps(fastExpm1(x), std::expm1(x)), 2) << x;
 }
 
+// fastExpm1 passes NaN to the float-to-int rounding; there, as in CVTPS2DQ, NaN and values outside
+// int32 give INT32_MIN (a C++ cast of them would be undefined behaviour), scalar and eight-wide alike.
+TEST(FastMath, RoundingToIntIsDefinedForNaNAndOutOfRange) {
+    const float inf = std::numeric_limits<float>::infinity();
+    EXPECT_EQ(detail::toIntRound(2.5f), 2);
+    EXPECT_EQ(detail::toIntRound(-3.5f), -4);
+    EXPECT_EQ(detail::toIntRound(-2147483648.0f), INT32_MIN);
+    EXPECT_EQ(detail::toIntRound(2147483520.0f), 2147483520);
+    for (const float x : {std::nanf(""), inf, -inf, 2147483648.0f, -3e9f, 3e38f}) {
+        EXPECT_EQ(detail::toIntRound(x), INT32_MIN) << x;
+        EXPECT_EQ(detail::toIntRound(Float8(x))[2], INT32_MIN) << x;
+    }
+}
+
 TEST(Float8, BroadcastKeepsTheSignOfZero) {
     EXPECT_TRUE(std::signbit(Float8(-0.0f)[0]));
     EXPECT_TRUE(std::signbit(Float8(-0.0f)[7]));

@@ -16,11 +16,6 @@
 // may run, at most 1024 vertices in all. Absurd counts (up to 2^32 − 1) are passed only where the
 // input assembler's checks must refuse them, or where the draw has no instance, so that they test
 // that the refusal comes before the allocation.
-//
-// RASTER_FUZZ_AVOID_KNOWN=1 in the environment keeps inputs away from the defects known when this
-// was written (issue 30: element offsets within 16 of 2^32, a scissor edge at INT_MIN, absurd
-// counts), so that a run on the unfixed library can look for others. Without it every input is
-// tried as decoded.
 #include <fuzzer/FuzzedDataProvider.h>
 #include <strings.h>
 
@@ -139,14 +134,6 @@ struct PsTex {
 
 // ---- Decoding -----------------------------------------------------------------------------------
 
-bool avoidKnown() {
-    static const bool avoid = [] {
-        const char* v = std::getenv("RASTER_FUZZ_AVOID_KNOWN");
-        return v && *v && std::strcmp(v, "0") != 0;
-    }();
-    return avoid;
-}
-
 struct Input;
 const Input* current_input = nullptr;  // for finding(): what the failing input decoded to
 void describe(const Input& s);
@@ -207,17 +194,15 @@ uint32_t pickOffset(FuzzedDataProvider& in) {
         case 0:
             return kAppendAlignedElement;
         case 1:
-            return avoidKnown() ? 0x80000000u : 0xFFFFFFFCu;
+            return 0xFFFFFFFCu;  // issue 30: wrapped around in 32 bits
         case 2:
-            return avoidKnown() ? 0x80000000u : 0xFFFFFFF0u - 4u * in.ConsumeIntegralInRange<uint32_t>(0, 3);
+            return 0xFFFFFFF0u - 4u * in.ConsumeIntegralInRange<uint32_t>(0, 3);
         case 3:
             return 0x80000000u;
         case 4:
             return in.ConsumeIntegral<uint8_t>();  // often not a multiple of 4
-        case 5: {
-            const uint32_t v = in.ConsumeIntegral<uint32_t>();
-            return avoidKnown() && v >= 0xFFFFFFE0u ? v & 0x7FFFFFFFu : v;
-        }
+        case 5:
+            return in.ConsumeIntegral<uint32_t>();
         default:
             return 4u * in.ConsumeIntegralInRange<uint32_t>(0, 16);
     }
@@ -244,7 +229,7 @@ constexpr size_t kMaxStride = 64;
 int32_t pickScissor(FuzzedDataProvider& in) {
     switch (in.ConsumeIntegralInRange<int>(0, 7)) {
         case 0:
-            return avoidKnown() ? INT_MIN + 1 : INT_MIN;
+            return INT_MIN;  // issue 30: right − 1 overflowed
         case 1:
             return INT_MIN + 1;
         case 2:
@@ -253,10 +238,8 @@ int32_t pickScissor(FuzzedDataProvider& in) {
             return INT_MAX - 1;
         case 4:
             return -1;
-        case 5: {
-            const int32_t v = in.ConsumeIntegral<int32_t>();
-            return avoidKnown() && v == INT_MIN ? 0 : v;
-        }
+        case 5:
+            return in.ConsumeIntegral<int32_t>();
         default:
             return in.ConsumeIntegralInRange<int32_t>(0, 70);
     }
@@ -643,10 +626,6 @@ bool mustRefuseInstances(const Input& s) {
 }
 
 void capWork(Input& s) {
-    if (avoidKnown()) {
-        s.call.count = std::min<uint32_t>(s.call.count, 64);
-        s.call.instanceCount = std::min<uint32_t>(s.call.instanceCount, 4);
-    }
     const bool no_instances = s.call.instanceCount == 0;
     const bool no_vertices = s.call.count == 0;
     if (!mustRefuseVertices(s) && !no_instances) s.call.count = std::min<uint32_t>(s.call.count, 256);

@@ -26,8 +26,6 @@
 //  - the Float8 path (opticalDepth<Float8>, opticalDepthToInfinity<Float8>, applyOpticalDepth<Float8>,
 //    PsSky over Float8) gives, lane by lane, the same bits as the scalar path (simd.hpp's promise).
 // A broken contract prints the inputs and aborts, which libFuzzer reports as a crash.
-// RASTER_FUZZ_AVOID_KNOWN=1 in the environment avoids the defects known when this was written
-// (known()), RASTER_FUZZ_AVOID_FOUND=1 those it found (found()), to look for others.
 #include <fuzzer/FuzzedDataProvider.h>
 
 #include <algorithm>
@@ -54,19 +52,6 @@ constexpr Real kU = 0x1p-24L;  // float's unit roundoff
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
 // ---- Inputs -------------------------------------------------------------------------------------
-
-bool envFlag(const char* name) {
-    const char* v = std::getenv(name);
-    return v && *v && std::strcmp(v, "0") != 0;
-}
-bool avoidKnown() {
-    static const bool avoid = envFlag("RASTER_FUZZ_AVOID_KNOWN");
-    return avoid;
-}
-bool avoidFound() {
-    static const bool avoid = envFlag("RASTER_FUZZ_AVOID_FOUND");
-    return avoid;
-}
 
 float logUniform(FuzzedDataProvider& in, float lo, float hi) {
     const double t = in.ConsumeProbability<double>();
@@ -119,11 +104,7 @@ struct Medium {
 
 Medium medium(FuzzedDataProvider& in) {
     Medium m;
-    // With RASTER_FUZZ_AVOID_KNOWN, no σ = 0 and no e^{b·y0} outside float (known()): their NaN
-    // also reaches the scalar expm1, whose float-to-int conversion of NaN is undefined behaviour.
     for (int c = 0; c < 3; ++c) m.fog.sigma[c] = sigmaOrQ(in);
-    if (avoidKnown())
-        for (int c = 0; c < 3; ++c) m.fog.sigma[c] = std::max(m.fog.sigma[c], 1e-30f);
     for (int c = 0; c < 3; ++c) m.fog.q[c] = sigmaOrQ(in);
     m.fog.height = in.ConsumeIntegralInRange<int>(0, 3) != 0;
     switch (in.ConsumeIntegralInRange<int>(0, 5)) {
@@ -154,7 +135,6 @@ Medium medium(FuzzedDataProvider& in) {
         default:
             p = in.ConsumeFloatingPointInRange<float>(-200.0f, 200.0f);
     }
-    if (avoidKnown()) p = std::clamp(p, -87.0f, 87.0f);
     m.y0 = m.fog.b != 0.0f ? p / m.fog.b : in.ConsumeFloatingPointInRange<float>(-1e4f, 1e4f);
     if (!std::isfinite(m.y0)) m.y0 = 0.0f;
     // Rounding may put b·y0 a hair past ±200: pulled back in.
@@ -268,29 +248,7 @@ std::string describe(const Channel& c) {
     std::abort();
 }
 
-// The defects known when this was written (issue 30): σ = 0 (q/σ = 0/0), and e^{b·y0} under- or
-// overflowing float (0·∞ with expm1's overflow, ∞·0 at s = 0). RASTER_FUZZ_AVOID_KNOWN=1 keeps
-// inputs away from them (medium()) and leaves such channels unchecked, so that a run on the
-// unfixed code can look for other defects.
-bool known(const Channel& c) {
-    if (!avoidKnown()) return false;
-    const float by0 = float(c.b) * float(c.y0);
-    return c.sigma == 0 || (c.height && (by0 < -87.3f || by0 > 88.72f));
-}
-
-// The defects this fuzzer found next to those (known/README.md; their inputs there are run with
-// RASTER_FUZZ_AVOID_KNOWN=1, as they were found): e^{k·s} − 1 overflowing float times an e^{b·y0}
-// that did not underflow, and e^{b·y0}·s overflowing before (e^{k·s} − 1)/(k·s) < 1 brings it back:
-// τ = ∞ where τ_ref is a float, and L = q/σ where σ·τ_ref is small. RASTER_FUZZ_AVOID_FOUND=1
-// leaves such channels unchecked.
-bool found(const Channel& c) {
-    if (!avoidFound() || !c.height || std::isinf(c.s)) return false;
-    const float by0 = float(c.b) * float(c.y0), ks = float(c.b) * float(c.dy) * float(c.s);
-    return ks > 88.72f || std::isinf(std::exp(by0) * float(c.s));
-}
-
 void checkRadiance(const char* what, const Channel& c, float L) {
-    if (known(c) || found(c)) return;
     const Reference r = reference(c, kNone);
     if (std::isnan(L)) finding(what, c, L, double(r.L));
     if (r.L > Real(FLT_MAX)) {
@@ -303,7 +261,6 @@ void checkRadiance(const char* what, const Channel& c, float L) {
 }
 
 void checkDepth(const Channel& c, float tau) {
-    if (known(c) || found(c)) return;
     const Reference r = reference(c, kNone);
     if (std::isnan(tau) || tau < 0) finding("opticalDepth", c, tau, double(r.tau));
     if (!c.height || std::fabs(r.by0) <= 87) {

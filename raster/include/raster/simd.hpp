@@ -321,13 +321,18 @@ namespace detail {
 inline float bitsToFloat(int32_t i) { return __builtin_bit_cast(float, i); }
 inline Float8 bitsToFloat(Int8 i) { return simd::F32x8(i.v); }
 // To the nearest integer, ties to even (the default rounding mode; one CVTPS2DQ eight wide).
-inline int32_t toIntRound(float a) { return int32_t(__builtin_rintf(a)); }
+// NaN and values outside int32 give INT32_MIN, as CVTPS2DQ does: converting them with a C++ cast
+// is undefined behaviour, and fastExpm1 lets a NaN argument through to here on purpose.
+inline int32_t toIntRound(float a) {
+    const float r = __builtin_rintf(a);
+    return r >= -2147483648.0f && r < 2147483648.0f ? int32_t(r) : INT32_MIN;
+}
 inline Int8 toIntRound(Float8 a) {
 #if defined(__AVX__)
     return simd::I32x8(_mm256_cvtps_epi32(__m256(a.v)));
 #else
     Int8 r;
-    for (int i = 0; i < 8; ++i) r.v[i] = int32_t(__builtin_rintf(a.v[i]));
+    for (int i = 0; i < 8; ++i) r.v[i] = toIntRound(a.v[i]);
     return r;
 #endif
 }
