@@ -13,6 +13,7 @@
 #include "raster/check.hpp"
 #include "raster/pipeline.hpp"
 #include "raster/shaders/basic.hpp"
+#include "lecture/fire_shaders.hpp"
 #include "raster/shaders/billboard.hpp"
 
 namespace raster {

@@ -1,5 +1,5 @@
 #include "raster/stages/output_merger.hpp"
-#include "raster/stages/merge_policy.hpp"
+#include "raster/fastpath/merge_policy.hpp"
 
 #include <gtest/gtest.h>
 

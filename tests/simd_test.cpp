@@ -14,9 +14,10 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "raster/scenes.hpp"
+#include "lecture/fire_shaders.hpp"
 #include "raster/shaders/billboard.hpp"
 #include "raster/simd.hpp"
-#include "raster/stages/transparency.hpp"
+#include "raster/fastpath/transparency.hpp"
 #include "raster/texture.hpp"
 
 #include "eight_only.hpp"

@@ -10,6 +10,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <limits>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -348,6 +349,102 @@ TEST(TracePixelHistory, TextAndJsonListTheFragments) {
         << json;
     EXPECT_EQ(formatPixelHistory(trace, 7, 7), "pixel (7, 7): 0 fragments\n");
     EXPECT_EQ(pixelHistoryJson(trace, 7, 7), "{\"pixel\":[7,7],\"truncated\":false,\"fragments\":[]}\n");
+}
+
+// pixelHistoryJson escapes what JSON requires in names (a shader's type name is the compiler's
+// text): quotes, backslashes and control characters; bytes that are not UTF-8 become U+FFFD. The
+// output parses back to the same names and numbers, fields in the documented order.
+TEST(TracePixelHistory, JsonEscapesNamesAndParsesBack) {
+    const std::string name = "Ps<\"q\" \\ \t\n\x01 \xc3\xa9>";  // quote, backslash, tab, newline, U+0001, é
+    Trace trace({.pixels = {3, 1, 3, 1}});
+    TraceDraw& draw = trace.beginDraw(4, 4);
+    draw.draw = 0;
+    draw.pixelShader = name;
+    TraceDraw& bad = trace.beginDraw(4, 4);
+    bad.draw = 1;
+    bad.pixelShader = "Ps\xff";  // not UTF-8
+    const float kInf = std::numeric_limits<float>::infinity();
+    trace.addFragments({
+        {.draw = 0,
+         .primitive = 7,
+         .x = 3,
+         .y = 1,
+         .depth = 0.1f,
+         .depthBefore = 1.0f,
+         .depthAfter = 0.1f,
+         .fate = FragmentFate::Written,
+         .shaded = true,
+         .shaderOutput = {1, 0.5f, 0, 1},
+         .colorBefore = {0, 0, 0, 1},
+         .colorAfter = {1, 0.5f, 0, 1}},
+        {.draw = 1,
+         .primitive = 2,
+         .x = 3,
+         .y = 1,
+         .depth = 0.75f,
+         .depthBefore = 0.1f,
+         .depthAfter = kInf,
+         .fate = FragmentFate::EarlyDepthFailed,
+         .shaded = false,
+         .shaderOutput = glm::vec4(kNaN),
+         .colorBefore = {1, 0.5f, 0, 1},
+         .colorAfter = {1, kNaN, -kInf, 1}},
+        {.draw = 9,
+         .primitive = 0,
+         .x = 3,
+         .y = 1,
+         .depth = 0.5f,
+         .depthBefore = kNaN,
+         .depthAfter = kNaN,
+         .fate = FragmentFate::Discarded,
+         .shaded = true,
+         .shaderOutput = glm::vec4(kNaN),
+         .colorBefore = glm::vec4(kNaN),
+         .colorAfter = glm::vec4(kNaN)},
+    });
+    const std::string json = pixelHistoryJson(trace, 3, 1);
+    ASSERT_TRUE(json.ends_with("}\n")) << json;
+    for (size_t i = 0; i + 1 < json.size(); ++i)
+        ASSERT_GE(static_cast<unsigned char>(json[i]), 0x20u)
+            << "a raw control character at " << i << ": " << json;
+    EXPECT_NE(json.find(R"("pixelShader":"Ps<\"q\" \\ \t\n\u0001 )"
+                        "\xc3\xa9"
+                        R"(>")"),
+              std::string::npos)
+        << json;
+    EXPECT_NE(json.find(R"("depth":0.1,"depthBefore":1.0,"depthAfter":0.1,)"), std::string::npos)
+        << "the shortest decimal of each float: " << json;
+
+    nlohmann::ordered_json parsed;
+    ASSERT_NO_THROW(parsed = nlohmann::ordered_json::parse(json)) << json;
+    EXPECT_EQ(parsed["pixel"], nlohmann::ordered_json({3, 1}));
+    EXPECT_EQ(parsed["truncated"], false);
+    const nlohmann::ordered_json& fragments = parsed["fragments"];
+    ASSERT_EQ(fragments.size(), 3u) << json;
+    const nlohmann::ordered_json& written = fragments[0];
+    std::vector<std::string> keys;
+    for (const auto& [key, value] : written.items()) keys.push_back(key);
+    EXPECT_EQ(keys, (std::vector<std::string>{"draw", "primitive", "pixelShader", "depth", "depthBefore",
+                                              "depthAfter", "depthTest", "fate", "shaded", "shaderOutput",
+                                              "colorBefore", "colorAfter", "blend"}));
+    EXPECT_EQ(written["pixelShader"].get<std::string>(), name);
+    EXPECT_EQ(written["primitive"], 7);
+    EXPECT_EQ(float(written["depth"].get<double>()), 0.1f) << "reads back as the same float";
+    EXPECT_EQ(written["depthTest"], "pass");
+    EXPECT_EQ(written["fate"], "written");
+    EXPECT_EQ(written["shaded"], true);
+    EXPECT_EQ(written["shaderOutput"], nlohmann::ordered_json({1.0, 0.5, 0.0, 1.0}));
+    EXPECT_EQ(written["blend"], "blend off: result = src");
+    const nlohmann::ordered_json& failed = fragments[1];
+    EXPECT_EQ(failed["pixelShader"].get<std::string>(), "Ps\xef\xbf\xbd") << "0xFF became U+FFFD";
+    EXPECT_EQ(failed["depthTest"], "fail");
+    EXPECT_TRUE(failed["depthAfter"].is_null()) << "Inf is null";
+    EXPECT_TRUE(failed["shaderOutput"].is_null()) << "not shaded: null, not four nulls";
+    EXPECT_EQ(failed["colorAfter"], nlohmann::ordered_json({1.0, nullptr, nullptr, 1.0}));
+    const nlohmann::ordered_json& orphan = fragments[2];  // of a draw the trace has no record of
+    EXPECT_EQ(orphan["pixelShader"], "");
+    EXPECT_TRUE(orphan["depthTest"].is_null()) << "no depth buffer: not tested";
+    EXPECT_FALSE(orphan.contains("blend"));
 }
 
 TEST(TracePixelHistory, MaxFragmentsTruncates) {

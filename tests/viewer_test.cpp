@@ -894,7 +894,8 @@ TEST_F(ViewerTest, ReferenceSolutionIsTheReferencePipelinesRender) {
     for (size_t i = 0; i < size_t(kWidth) * kHeight; ++i)
         differing += !std::equal(a + 4 * i, a + 4 * i + 4, b + 4 * i);
     const std::vector<std::string> expected = describeDifference(
-        compareImages(fast.toRgba8(), exact.toRgba8(), kWidth, kHeight), "the reference pipeline");
+        compareImages({fast.toRgba8(), kWidth, kHeight}, {exact.toRgba8(), kWidth, kHeight}),
+        "the reference pipeline");
     ASSERT_FALSE(expected.empty());
     EXPECT_TRUE(expected[0].starts_with(
         "difference from the reference pipeline: " + std::to_string(differing) + " of "))
@@ -916,7 +917,8 @@ TEST_F(ViewerTest, LabIsComparedWithItsSolution) {
     expectSameImage(shots[1], solution, "K: the lab's solution");
     EXPECT_TRUE(last_solved_);
     const std::vector<std::string> lines = describeDifference(
-        compareImages(lab.toRgba8(), solution.toRgba8(), kWidth, kHeight), "scene billboards@solution");
+        compareImages({lab.toRgba8(), kWidth, kHeight}, {solution.toRgba8(), kWidth, kHeight}),
+        "scene billboards@solution");
     ASSERT_FALSE(lines.empty());
     EXPECT_TRUE(said(last_messages_, lines[0])) << lines[0];
 }

@@ -6,6 +6,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "raster/shaders/basic.hpp"
+#include "lecture/fire_shaders.hpp"
 #include "raster/shaders/billboard.hpp"
 #include "raster/shaders/fog.hpp"
 

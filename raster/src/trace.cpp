@@ -3,6 +3,9 @@
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+#include <utility>
+
+#include <nlohmann/json.hpp>
 
 namespace raster {
 
@@ -74,18 +77,24 @@ std::string vec(const glm::vec4& v) {
     return fmt("(%.4f %.4f %.4f %.4f)", v.x, v.y, v.z, v.w);
 }
 
-// JSON has no NaN or Inf: those become null.
-std::string num(float v) { return std::isfinite(v) ? fmt("%.9g", v) : "null"; }
-std::string jvec(const glm::vec4& v) {
-    if (std::isnan(v.x) && std::isnan(v.y) && std::isnan(v.z) && std::isnan(v.w)) return "null";
-    // Appended, not `"[" + …`: GCC 12 warns falsely (-Wrestrict) on a literal + std::string.
-    std::string s = "[";
-    for (int c = 0; c < 4; ++c) {
-        if (c > 0) s += ',';
-        s += num(v[c]);
-    }
-    s += ']';
-    return s;
+// JSON's numbers: the shortest decimal that reads back as the same float (the fields are floats), and
+// null for NaN and ±Inf, which JSON cannot say. Objects keep their fields in the order written.
+using Json = nlohmann::basic_json<nlohmann::ordered_map, std::vector, std::string, bool, std::int64_t,
+                                  std::uint64_t, float>;
+
+Json jsonNumber(float v) {
+    return std::isfinite(v) ? Json(v) : Json(nullptr);
+}
+Json jsonVec(const glm::vec4& v) {
+    if (std::isnan(v.x) && std::isnan(v.y) && std::isnan(v.z) && std::isnan(v.w)) return nullptr;
+    Json out = Json::array();
+    for (int c = 0; c < 4; ++c) out.push_back(jsonNumber(v[c]));
+    return out;
+}
+// "fail", "pass", or null where no depth test ran (no depth buffer).
+Json jsonDepthTest(const TraceFragment& f) {
+    if (f.fate == FragmentFate::EarlyDepthFailed || f.fate == FragmentFate::LateDepthFailed) return "fail";
+    return std::isnan(f.depthBefore) ? Json() : Json("pass");
 }
 
 std::string blendEquation(const RenderTargetBlendDesc& d) {
@@ -93,11 +102,16 @@ std::string blendEquation(const RenderTargetBlendDesc& d) {
     auto eq = [](Blend s, BlendOp op, Blend t) {
         const std::string src = "src*" + std::string(name(s)), dst = "dst*" + std::string(name(t));
         switch (op) {
-            case BlendOp::Add: return src + " + " + dst;
-            case BlendOp::Subtract: return src + " - " + dst;
-            case BlendOp::RevSubtract: return dst + " - " + src;
-            case BlendOp::Min: return std::string("min(src, dst)");
-            case BlendOp::Max: return std::string("max(src, dst)");
+            case BlendOp::Add:
+                return src + " + " + dst;
+            case BlendOp::Subtract:
+                return src + " - " + dst;
+            case BlendOp::RevSubtract:
+                return dst + " - " + src;
+            case BlendOp::Min:
+                return std::string("min(src, dst)");
+            case BlendOp::Max:
+                return std::string("max(src, dst)");
         }
         return std::string("?");
     };
@@ -148,28 +162,29 @@ std::string formatPixelHistory(const Trace& trace, int32_t x, int32_t y) {
 }
 
 std::string pixelHistoryJson(const Trace& trace, int32_t x, int32_t y) {
-    const std::vector<TraceFragment> history = trace.pixelHistory(x, y);
-    std::ostringstream out;
-    out << "{\"pixel\":[" << x << "," << y << "],\"truncated\":" << (trace.fragmentsTruncated() ? "true" : "false")
-        << ",\"fragments\":[";
-    for (size_t i = 0; i < history.size(); ++i) {
-        const TraceFragment& f = history[i];
+    Json fragments = Json::array();
+    for (const TraceFragment& f : trace.pixelHistory(x, y)) {
         const TraceDraw* d = findDraw(trace, f.draw);
-        out << (i ? "," : "") << "{\"draw\":" << f.draw << ",\"primitive\":" << f.primitive
-            << ",\"pixelShader\":\"" << (d ? d->pixelShader : "") << "\",\"depth\":" << num(f.depth)
-            << ",\"depthBefore\":" << num(f.depthBefore) << ",\"depthAfter\":" << num(f.depthAfter)
-            << ",\"depthTest\":"
-            << (f.fate == FragmentFate::EarlyDepthFailed || f.fate == FragmentFate::LateDepthFailed
-                    ? "\"fail\""
-                    : (std::isnan(f.depthBefore) ? "null" : "\"pass\""))
-            << ",\"fate\":\"" << toString(f.fate) << "\",\"shaded\":" << (f.shaded ? "true" : "false")
-            << ",\"shaderOutput\":" << jvec(f.shaderOutput) << ",\"colorBefore\":" << jvec(f.colorBefore)
-            << ",\"colorAfter\":" << jvec(f.colorAfter);
-        if (d) out << ",\"blend\":\"" << blendEquation(d->blend.target(0)) << "\"";
-        out << "}";
+        Json fragment = {{"draw", f.draw},
+                         {"primitive", f.primitive},
+                         {"pixelShader", d ? d->pixelShader : std::string()},
+                         {"depth", jsonNumber(f.depth)},
+                         {"depthBefore", jsonNumber(f.depthBefore)},
+                         {"depthAfter", jsonNumber(f.depthAfter)},
+                         {"depthTest", jsonDepthTest(f)},
+                         {"fate", toString(f.fate)},
+                         {"shaded", f.shaded},
+                         {"shaderOutput", jsonVec(f.shaderOutput)},
+                         {"colorBefore", jsonVec(f.colorBefore)},
+                         {"colorAfter", jsonVec(f.colorAfter)}};
+        if (d) fragment["blend"] = blendEquation(d->blend.target(0));
+        fragments.push_back(std::move(fragment));
     }
-    out << "]}\n";
-    return out.str();
+    const Json history = {
+        {"pixel", {x, y}}, {"truncated", trace.fragmentsTruncated()}, {"fragments", std::move(fragments)}};
+    // Names that are not UTF-8 (a shader's type name is whatever the compiler made of it) are
+    // written with U+FFFD in place of the bad bytes rather than failing the whole history.
+    return history.dump(-1, ' ', false, Json::error_handler_t::replace) + "\n";
 }
 
 std::string formatDraw(const TraceDraw& d, size_t limit) {

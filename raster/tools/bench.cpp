@@ -12,8 +12,8 @@
 
 #include "commands.hpp"
 #include "options.hpp"
+#include "raster/image_compare.hpp"
 #include "raster/scenes.hpp"
-#include "view/compare_views.hpp"
 
 namespace raster::tools {
 namespace {
@@ -23,14 +23,14 @@ struct BenchArgs {
     SceneOptions options;
     uint32_t frames = 20, threads = 0;
     std::string out;
-    bool reference = false, noError = false;
+    bool reference = false, plain = false, noError = false;
 };
 
 int runBench(const BenchArgs& args) {
     const SceneOptions& options = args.options;
     const uint32_t frames = args.frames, threads = args.threads;
     std::unique_ptr<Scene> scene = makeScene(args.scene, options);
-    Context context({threads, args.reference});
+    Context context({threads, args.reference, args.plain});
     RenderTarget color(options.width, options.height);
     DepthTarget depth(options.width, options.height);
 
@@ -63,9 +63,10 @@ int runBench(const BenchArgs& args) {
         DepthTarget ref_depth(options.width, options.height);
         scene->render(ref_context, ref_color, ref_depth);
         const ImageDifference e =
-            compareImages(color.toRgba8(), ref_color.toRgba8(), color.width(), color.height(), 3);
+            compareImages({color.toRgba8(), color.width(), color.height()},
+                          {ref_color.toRgba8(), color.width(), color.height()}, CompareChannels::Rgb);
         std::printf("error_vs_reference mean_abs=%.4f max_diff=%d within_1=%.6f\n", e.meanAbs, e.max,
-                    double(e.within1) / double(e.pixels));
+                    e.share(e.within1));
     }
     std::printf("raster %s %ux%u ms_per_frame_median=%.3f frames=%u\n", args.scene.c_str(), options.width,
                 options.height, ms[ms.size() / 2], frames);
@@ -85,6 +86,8 @@ Command addBench(CLI::App& app) {
     addThreadsOption(*command, args->threads);
     command->add_option("--out", args->out, "write the last frame to this PNG file");
     command->add_flag("--reference", args->reference, "run the reference pipeline");
+    command->add_flag("--plain", args->plain,
+                      "every primitive through the plain path (fill/quads.hpp): for stepping in a debugger");
     command->add_flag("--no-error", args->noError, "skip the error against the reference pipeline");
     command->footer(
         "Prints the fast pipeline's error against the reference pipeline (skip with --no-error), then\n"

@@ -29,6 +29,7 @@
 #include "raster/pipeline.hpp"
 #include "raster/scenes.hpp"
 #include "raster/shaders/basic.hpp"
+#include "lecture/fire_shaders.hpp"
 #include "raster/shaders/billboard.hpp"
 
 namespace raster::tools {

@@ -22,7 +22,7 @@ struct RenderArgs {
     std::vector<std::string> names;
     std::string outDir = "out";
     SceneOptions options;
-    bool reference = false, viewAfter = false, list = false;
+    bool reference = false, plain = false, viewAfter = false, list = false;
 };
 
 // --list: each scene's name and what it is.
@@ -63,7 +63,7 @@ int runRender(const RenderArgs& args) {
     std::error_code ec;
     std::filesystem::create_directories(args.outDir, ec);
     RASTER_REQUIRE(!ec, BadFile, "cannot create output directory '" + args.outDir + "': " + ec.message());
-    Context context({0, args.reference});
+    Context context({0, args.reference, args.plain});
     for (const std::string& name : names) {
         std::unique_ptr<Scene> scene = makeScene(name, options);
         RenderTarget color(options.width, options.height);
@@ -86,6 +86,7 @@ Command addRender(CLI::App& app) {
         ->capture_default_str();
     addSizeOptions(*command, args->options);
     command->add_flag("--reference", args->reference, "render through the reference pipeline");
+    command->add_flag("--plain", args->plain, "every primitive through the plain path (fill/quads.hpp): for stepping in a debugger");
     command->add_flag("--view", args->viewAfter,
                       "then open raster view on the first scene, if a display exists");
     // After the options: `--height --width 64` takes "--width" as --height's value, and that error,

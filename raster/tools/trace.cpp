@@ -21,7 +21,7 @@ struct TraceArgs {
     std::string scene;
     SceneOptions options;
     uint32_t threads = 0, px = 0, py = 0, draw = 0, limit = 16;
-    bool reference = false, stats = false, json = false;
+    bool reference = false, plain = false, stats = false, json = false;
     bool pixel = false, geometry = false;  // --pixel, --draw given
 };
 
@@ -56,7 +56,7 @@ int runTrace(const TraceArgs& args) {
                                                   std::to_string(options.height) + " target");
 
     std::unique_ptr<Scene> scene = makeScene(args.scene, options);
-    Context context({args.threads, args.reference});
+    Context context({args.threads, args.reference, args.plain});
     RenderTarget color(options.width, options.height);
     DepthTarget depth(options.width, options.height);
     TraceOptions trace_options;
@@ -91,6 +91,7 @@ Command addTrace(CLI::App& app) {
     addContentOptions(*command, args->options);
     addThreadsOption(*command, args->threads);
     command->add_flag("--reference", args->reference, "run the reference pipeline");
+    command->add_flag("--plain", args->plain, "every primitive through the plain path (fill/quads.hpp): for stepping in a debugger");
     return {command, [args, pixel, draw] {
                 args->pixel = pixel->count() > 0;
                 args->geometry = draw->count() > 0;

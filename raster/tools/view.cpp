@@ -58,6 +58,7 @@ Command addView(CLI::App& app) {
     addContentOptions(*command, scene);
     addThreadsOption(*command, options->context.threads);
     command->add_flag("--reference", options->context.reference, "run the reference pipeline");
+    command->add_flag("--plain", options->context.plain, "every primitive through the plain path (fill/quads.hpp): for stepping in a debugger");
     command->add_flag("--headless", options->headless, "SDL's offscreen driver: run --script, then exit");
     command
         ->add_option_function<std::string>(

@@ -33,6 +33,7 @@
 #include <vector>
 
 #include "raster/pipeline.hpp"
+#include "lecture/fire_shaders.hpp"
 #include "raster/shaders/billboard.hpp"
 #include "raster/texture.hpp"
 

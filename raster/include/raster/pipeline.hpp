@@ -35,6 +35,8 @@
 
 #include "raster/buffer.hpp"
 #include "raster/check.hpp"
+#include "raster/fastpath/merge_policy.hpp"
+#include "raster/fastpath/transparency.hpp"
 #include "raster/input_layout.hpp"
 #include "raster/render_target.hpp"
 #include "raster/shader.hpp"
@@ -42,18 +44,16 @@
 #include "raster/stages/clipper.hpp"
 #include "raster/stages/geometry_shader.hpp"
 #include "raster/stages/input_assembler.hpp"
-#include "raster/stages/merge_policy.hpp"
 #include "raster/stages/output_merger.hpp"
 #include "raster/stages/pixel_shader.hpp"
 #include "raster/stages/rasterizer.hpp"
 #include "raster/stages/setup.hpp"
-#include "raster/stages/trace_recorder.hpp"
-#include "raster/stages/transparency.hpp"
 #include "raster/stages/vertex_shader.hpp"
 #include "raster/states.hpp"
 #include "raster/statistics.hpp"
 #include "raster/thread_pool.hpp"
 #include "raster/trace.hpp"
+#include "raster/trace_recorder.hpp"
 
 namespace raster {
 
@@ -63,6 +63,12 @@ constexpr size_t kMaxLoggedDraws = 1 << 16;
 struct ContextOptions {
     unsigned threads = 0;    // 0: one per hardware thread
     bool reference = false;  // the double-precision reference pipeline
+    // The plain path, for reading and stepping the pipeline in a debugger: every primitive goes
+    // through fill/quads.hpp (rasterizer edge functions → early depth test → pixel shader → output
+    // merger, quad by quad), with the generic depth and blend (the same bits as the specialised
+    // ones), billboards as the two triangles the geometry shader emits, no tile skipped. Images equal
+    // the fast path's except where it draws a billboard as a rectangle (within 1/255 there).
+    bool plain = false;
 };
 
 // How far a frame has got, for a progress display on another thread while the frame renders: give
@@ -124,49 +130,6 @@ class RenderProgress {
 
 namespace detail {
 
-// What the rasteriser reads of one chunk of primitives, filled by the geometry stages. Aligned to
-// a cache line: neighbouring chunks are filled by different threads at once.
-template <class V>
-struct alignas(64) Chunk {
-    std::vector<V> vertices;  // clip-space vertices the setups refer to
-    std::vector<TriangleSetup> triangles;
-    std::vector<LineSetup> lines;
-    std::vector<PointSetup> points;
-    std::vector<RectSetup> rects;
-    std::vector<std::vector<uint32_t>> bins;  // per tile, bin entries in primitive order
-    PipelineStatistics stats;
-    int gsOverflow = 0;
-    uint32_t gsOverflowPrimitive = 0;
-    // Trace records (only while a trace with geometry is set), at most traceCap of each.
-    bool tracing = false;
-    uint32_t traceCap = 0;
-    std::vector<TraceGsVertex> traceGs;
-    std::vector<TracePrimitive> tracePrimitives;
-    uint64_t traceGsTotal = 0, tracePrimitivesTotal = 0;
-
-    void reset(uint32_t tiles) {
-        vertices.clear(), triangles.clear(), lines.clear(), points.clear(), rects.clear();
-        bins.resize(tiles);
-        for (auto& b : bins) b.clear();
-        stats = {};
-        gsOverflow = 0;
-        tracing = false;
-        traceGs.clear(), tracePrimitives.clear();
-        traceGsTotal = tracePrimitivesTotal = 0;
-    }
-    // Notes what happened to a primitive (s: its screen vertices, n of them; none if rejected early).
-    void trace(uint32_t primitive, PrimitiveKind kind, PrimitiveFate fate, bool clipped, const ScreenVertex* s,
-               int n, const float* w = nullptr) {
-        if (!tracing) return;
-        if (tracePrimitivesTotal++ >= traceCap) return;
-        TracePrimitive t{primitive, kind, fate, clipped, uint8_t(n), {}};
-        for (int i = 0; i < n; ++i)
-            t.screen[i] = glm::vec4(float(s[i].x) / kSubpixelOne, float(s[i].y) / kSubpixelOne, s[i].z,
-                                    w ? w[i] : (s[i].invW != 0.0f ? 1.0f / s[i].invW : 0.0f));
-        tracePrimitives.push_back(t);
-    }
-};
-
 template <class GS, class VsOut>
 struct LastGeometryStage {
     using Vertex = GeometryShaderOutput<GS>;
@@ -181,7 +144,7 @@ struct LastGeometryStage<NoGeometryShader, VsOut> {
 }  // namespace detail
 
 class Context {
-public:
+  public:
     explicit Context(const ContextOptions& options = {});
 
     // ---- Input assembler ----
@@ -199,7 +162,8 @@ public:
     void setRenderTargets(std::span<RenderTarget* const> targets, DepthTarget* depth);
     void setRenderTargets(RenderTarget* target, DepthTarget* depth) {
         RenderTarget* const one[1] = {target};
-        setRenderTargets(target ? std::span<RenderTarget* const>(one) : std::span<RenderTarget* const>(), depth);
+        setRenderTargets(target ? std::span<RenderTarget* const>(one) : std::span<RenderTarget* const>(),
+                         depth);
     }
 
     // D3D11's ClearRenderTargetView and ClearDepthStencilView (depth only): as target.clear(), on
@@ -222,7 +186,8 @@ public:
         execute(vs, gs, ps, DrawCall{false, vertexCount, startVertex});
     }
     template <VertexShader VS, PixelShader PS>
-    void drawIndexed(const VS& vs, const PS& ps, uint32_t indexCount, uint32_t startIndex = 0, int32_t baseVertex = 0) {
+    void drawIndexed(const VS& vs, const PS& ps, uint32_t indexCount, uint32_t startIndex = 0,
+                     int32_t baseVertex = 0) {
         execute(vs, NoGeometryShader{}, ps, DrawCall{true, indexCount, startIndex, baseVertex});
     }
     template <VertexShader VS, GeometryShader GS, PixelShader PS>
@@ -237,8 +202,9 @@ public:
                 DrawCall{false, vertexCountPerInstance, startVertex, 0, instanceCount, startInstance});
     }
     template <VertexShader VS, PixelShader PS>
-    void drawIndexedInstanced(const VS& vs, const PS& ps, uint32_t indexCountPerInstance, uint32_t instanceCount,
-                              uint32_t startIndex = 0, int32_t baseVertex = 0, uint32_t startInstance = 0) {
+    void drawIndexedInstanced(const VS& vs, const PS& ps, uint32_t indexCountPerInstance,
+                              uint32_t instanceCount, uint32_t startIndex = 0, int32_t baseVertex = 0,
+                              uint32_t startInstance = 0) {
         execute(vs, NoGeometryShader{}, ps,
                 DrawCall{true, indexCountPerInstance, startIndex, baseVertex, instanceCount, startInstance});
     }
@@ -249,7 +215,7 @@ public:
     void execute(const VS& vs, const GS& gs, const PS& ps, const DrawCall& call);
 
     // ---- Statistics ----
-    const PipelineStatistics& drawStatistics() const { return draw_stats_; }   // the last draw
+    const PipelineStatistics& drawStatistics() const { return draw_stats_; }    // the last draw
     const PipelineStatistics& frameStatistics() const { return frame_stats_; }  // since resetFrameStatistics
     // Stepping: draws are numbered from 0 since resetFrameStatistics. With a step limit, draws
     // numbered `draws` and later are skipped (validated, not run), and draw `draws − 1` runs only
@@ -296,13 +262,9 @@ public:
     unsigned threads() const { return pool_.size(); }
     bool reference() const { return options_.reference; }
 
-private:
+  private:
     // Everything a draw needs that does not depend on the shaders' types; throws on misuse.
-    struct DrawPlan {
-        PixelRect clip;
-        TileGrid grid;
-        ClipPlanes planes;
-        ViewportTransform viewport;
+    struct DrawPlan : detail::PrimitiveSpace {
         std::array<RenderTarget*, kMaxRenderTargets> targets{};
         int targetCount = 0;
         uint32_t width = 0, height = 0;  // of the bound targets
@@ -313,6 +275,23 @@ private:
     template <VertexShader VS, GeometryShader GS, PixelShader PS>
     void executeDraw(const VS& vs, const GS& gs, const PS& ps, const DrawCall& call);
 
+    // GS → clip → setup → bin of the draw's first total_prims primitives, in parallel over chunks of
+    // them; returns how many chunks. setup_stage false: the geometry shader only (a step's stage).
+    template <class GS, class VsOut>
+    uint32_t runGeometryStages(
+        const GS& gs, const std::vector<VsOut>& vs_out, const AssembledDraw& assembled, uint64_t total_prims,
+        const DrawPlan& p, bool setup_stage, bool trace_geometry,
+        std::vector<detail::Chunk<typename detail::LastGeometryStage<GS, VsOut>::Vertex>>& chunks);
+    // The chunks' statistics and trace records into the draw's; a geometry shader's overflow throws.
+    template <class GS, class V>
+    void gatherChunks(std::vector<detail::Chunk<V>>& chunks, uint32_t chunk_count, PipelineStatistics& stats,
+                      TraceDraw* trace_draw);
+    // rasterize → PS → OM: the depth and colour policies for the draw's state, then renderTiles.
+    template <class PS, class V>
+    void rasterizeDraw(const PS& ps, std::vector<detail::Chunk<V>>& chunks, uint32_t chunk_count,
+                       const DrawPlan& p, PipelineStatistics& stats, TraceDraw* trace_draw,
+                       uint32_t draw_index);
+
     template <class T>
     T& scratch() {
         auto& slot = scratch_[std::type_index(typeid(T))];
@@ -320,16 +299,10 @@ private:
         return *static_cast<T*>(slot.get());
     }
 
-    template <class V>
-    static bool setupBillboard(const V* const* quad, uint32_t primitive_id, const DrawPlan& plan,
-                               const RasterizerState& rs, detail::Chunk<V>& chunk);
-    template <class V>
-    static void clipAndSetup(PrimitiveKind kind, const V* const* v, uint32_t primitive_id, const DrawPlan& plan,
-                             const RasterizerState& rs, detail::Chunk<V>& chunk);
-
     template <class PS, class V, class Real, class Tracer, class Depth, class Color>
-    void renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, uint32_t chunk_count, const DrawPlan& plan,
-                     const Depth& depth, const Color& color, PipelineStatistics& stats, const Tracer& tracer);
+    void renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, uint32_t chunk_count,
+                     const DrawPlan& plan, const Depth& depth, const Color& color, PipelineStatistics& stats,
+                     const Tracer& tracer);
     // Starts the trace's record of a draw.
     template <class VS, class GS, class PS>
     TraceDraw& beginTraceDraw(uint32_t draw_index, const DrawPlan& plan);

@@ -245,7 +245,7 @@ struct SamplerState;
 // the input's float number `uvFloat` (u; v is the next float) may read. The lecture's psFire, which
 // returns the sample itself, is one (shaders/billboard.hpp). The pipeline then skips the blocks of a
 // billboard whose every pixel lies outside the texture's non-transparent columns (alphaSpans) under
-// a blend that adds nothing for alpha zero (the additive blend); see stages/transparency.hpp.
+// a blend that adds nothing for alpha zero (the additive blend); see fastpath/transparency.hpp.
 // A shader that declares it falsely draws a wrong image, as one that returns a wrong colour would.
 struct AlphaSource {
     const Texture2D* texture = nullptr;

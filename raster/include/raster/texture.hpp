@@ -546,7 +546,7 @@ template <int N>
     for (int c = 0; c < 4; ++c)
         for (int n = 0; n < N; ++n) {
             const __m256i bytes = channel[n][c];
-            // t00, t01 as words: 1·t0 + 0·t1, one operation where a shift pair is two (stop 27)
+            // t00, t01 as words: 1·t0 + 0·t1, one operation where a shift pair is two (commit a4281f8)
             const __m256i low = _mm256_maddubs_epi16(_mm256_set1_epi16(1), bytes);
             const __m256i rows = _mm256_add_epi16(_mm256_maddubs_epi16(wa[n], bytes), low);
             const __m256 sum = _mm256_cvtepi32_ps(_mm256_madd_epi16(rows, wb[n]));

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
-#include <cstdlib>
 
 #include "raster/check.hpp"
 #include "raster/scenes.hpp"
@@ -12,20 +11,6 @@ namespace raster::tools {
 namespace {
 
 constexpr int kGreyOfOne = 64;  // the difference view's smallest difference: dark grey, still visible
-
-int largestChannelDifference(const uint8_t* a, const uint8_t* b, int channels = 4) {
-    int m = 0;
-    for (int c = 0; c < channels; ++c) m = std::max(m, std::abs(int(a[c]) - int(b[c])));
-    return m;
-}
-
-void requireSize(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b, uint32_t width,
-                 uint32_t height) {
-    const size_t bytes = size_t(4) * width * height;
-    RASTER_REQUIRE(a.size() == bytes && b.size() == bytes, InvalidArgument,
-                   "comparing images of " + std::to_string(a.size()) + " and " + std::to_string(b.size()) +
-                       " bytes as " + std::to_string(width) + "x" + std::to_string(height) + " RGBA8");
-}
 
 std::string percent(size_t part, size_t whole) {
     char text[32];
@@ -63,27 +48,6 @@ std::string solutionLabel(const SolutionSource& solution) {
     }
 }
 
-ImageDifference compareImages(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b, uint32_t width,
-                              uint32_t height, int channels) {
-    requireSize(a, b, width, height);
-    RASTER_REQUIRE(channels == 3 || channels == 4, InvalidArgument,
-                   "comparing " + std::to_string(channels) + " channels (3: RGB, 4: RGBA)");
-    ImageDifference d;
-    d.pixels = size_t(width) * height;
-    uint64_t sum = 0;  // of every channel's |a − b|: at most 255 · 4 · 16384² fits
-    for (size_t i = 0; i < d.pixels; ++i) {
-        const uint8_t *p = &a[4 * i], *q = &b[4 * i];
-        for (int c = 0; c < channels; ++c) sum += uint64_t(std::abs(int(p[c]) - int(q[c])));
-        const int m = largestChannelDifference(p, q, channels);
-        d.differing += m > 0;
-        d.within1 += m <= 1;
-        d.within3 += m <= 3;
-        if (m > d.max) d.max = m, d.maxX = uint32_t(i % width), d.maxY = uint32_t(i / width);
-    }
-    d.meanAbs = d.pixels > 0 ? double(sum) / (double(channels) * double(d.pixels)) : 0.0;
-    return d;
-}
-
 std::vector<std::string> describeDifference(const ImageDifference& d, const std::string& label) {
     std::string first = "difference from " + label + ": " + std::to_string(d.differing) + " of " +
                         std::to_string(d.pixels) + " pixels differ";
@@ -108,17 +72,10 @@ Rgb differenceColour(int d, int max) {
 
 std::vector<uint8_t> differenceImage(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b,
                                      uint32_t width, uint32_t height) {
-    requireSize(a, b, width, height);
-    const size_t n = size_t(width) * height;
-    std::vector<uint8_t> largest(n);
-    int max = 0;
-    for (size_t i = 0; i < n; ++i) {
-        largest[i] = uint8_t(largestChannelDifference(&a[4 * i], &b[4 * i]));
-        max = std::max(max, int(largest[i]));
-    }
-    std::vector<uint8_t> rgba(4 * n);
-    for (size_t i = 0; i < n; ++i) {
-        const Rgb c = differenceColour(largest[i], max);
+    const DifferenceMap map = differenceMap({a, width, height}, {b, width, height});
+    std::vector<uint8_t> rgba(4 * map.largest.size());
+    for (size_t i = 0; i < map.largest.size(); ++i) {
+        const Rgb c = differenceColour(map.largest[i], map.max);
         rgba[4 * i] = c[0], rgba[4 * i + 1] = c[1], rgba[4 * i + 2] = c[2], rgba[4 * i + 3] = 255;
     }
     return rgba;

@@ -98,6 +98,7 @@ void RenderWorker::loop() {
     std::unique_ptr<Context> solution_context;
     const bool own_solution_context =
         solution_ && (solution_->context.reference != context_options_.reference ||
+                      solution_->context.plain != context_options_.plain ||
                       solution_->context.threads != context_options_.threads);
     for (;;) {
         uint64_t id;

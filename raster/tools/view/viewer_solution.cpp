@@ -78,7 +78,7 @@ void Viewer::composeSolutionViews() {
     }
     // image_ holds the frame's colour image here (uploadImage: only D replaces it).
     const std::vector<std::string> lines =
-        describeDifference(compareImages(image_, *solution, w, h), solutionLabel(solution_));
+        describeDifference(compareImages({image_, w, h}, {*solution, w, h}), solutionLabel(solution_));
     image_ = differenceImage(image_, *solution, w, h);
     view_notes_.insert(view_notes_.end(), lines.begin(), lines.end());
     // Printed when the figures change: not at every redraw, nor for a re-render of the same image
@@ -97,8 +97,7 @@ void Viewer::reportSolutionPixel(uint32_t x, uint32_t y, const uint8_t* frame) {
         return;
     }
     const uint8_t* p = &(*solution)[4 * (size_t(y) * shown_->color.width() + x)];
-    int largest = 0;
-    for (int c = 0; c < 4; ++c) largest = std::max(largest, std::abs(int(p[c]) - int(frame[c])));
+    const int largest = largestChannelDifference(p, frame);
     char text[160];
     std::snprintf(text, sizeof text, "solution pixel %u,%u: rgba %d %d %d %d, largest difference %d/255", x,
                   y, p[0], p[1], p[2], p[3], largest);

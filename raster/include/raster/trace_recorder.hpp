@@ -14,7 +14,7 @@
 #include "raster/input_layout.hpp"
 #include "raster/render_target.hpp"
 #include "raster/stages/input_assembler.hpp"
-#include "raster/stages/merge_policy.hpp"
+#include "raster/fastpath/merge_policy.hpp"
 #include "raster/trace.hpp"
 
 namespace raster::detail {
@@ -95,6 +95,7 @@ inline TracingColorPolicy tracingColorPolicy(const ColorPolicy& policy, const Bl
                                              RenderTarget* const* targets, int count) {
     if (std::holds_alternative<ColorNone>(policy)) return ColorNone{};
     if (std::holds_alternative<ColorGeneric<double>>(policy)) return std::get<ColorGeneric<double>>(policy);
+    if (std::holds_alternative<ColorGeneric<float>>(policy)) return std::get<ColorGeneric<float>>(policy);
     return ColorGeneric<float>{targets, count, &blend,
                                std::holds_alternative<ColorFast<BlendAdditiveRgba8>>(policy)};
 }

@@ -155,7 +155,7 @@ class TransparentColumns {
                 const __m128i ib = _mm_slli_epi32(
                     _mm_add_epi32(level, _mm_sub_epi32(_mm_add_epi32(r1, one), _mm_sllv_epi32(one, k))), 1);
                 // Each span's (first, last) as one 8-byte load: gathers measured slower on Zen 5
-                // (PERFORMANCE.md, stop 28).
+                // (PERFORMANCE.md, commit 3ff7f95).
                 auto spansAt = [&](__m128i index) {  // the four spans' firsts and lasts
                     alignas(16) int32_t at[4];
                     _mm_store_si128(reinterpret_cast<__m128i*>(at), index);

@@ -160,6 +160,9 @@ struct DepthDynamic {
     uint32_t width;
     ComparisonFunc func;
     bool writeEnabled;
+    // Tested after the pixel shader, in D3D's literal order (the plain path; the reference pipeline
+    // always tests late). The same pixels either way: shaders here cannot write depth.
+    bool late = false;
     bool test(int32_t x, int32_t y, float z) const { return depthPasses(func, z, depth[size_t(y) * width + x]); }
     void write(int32_t x, int32_t y, float z) const {
         if (writeEnabled) depth[size_t(y) * width + x] = z;

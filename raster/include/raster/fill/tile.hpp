@@ -1,0 +1,312 @@
+// The back half of a draw, rasterize → PS → OM, runs screen tile by screen tile
+// (Context::renderTiles, pipeline_impl.hpp); fillTile (fill/fill_tile.hpp) says which fill path each
+// primitive of a tile takes, and why. This file holds what every fill path of one tile shares:
+//
+//  - FillTraits: which paths a (shader, depth policy, colour policy) combination may take, decided at
+//    compile time, once per draw;
+//  - Tile: the tile's rectangle, statistics, shader and trace, and the plain per-fragment steps built
+//    from the stages — early depth test, shading a 2×2 quad, late depth test and blend — that the
+//    in-order path (fill/quads.hpp) is made of and that the eight-wide paths fall back to at a tile's
+//    border.
+//
+// The fill paths, one file each: fill/quads.hpp (in order, quad by quad: the plain path, and the
+// only one of lines, points, traced draws and the reference pipeline), fill/triangles_wide.hpp
+// (triangles in 4×2 blocks), fill/rectangles.hpp (billboards as screen rectangles),
+// fill/deferred.hpp (opaque tiles: depth first, then one shader call per visible fragment).
+#pragma once
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <type_traits>
+#include <vector>
+
+#include "raster/fastpath/depth_bounds.hpp"
+#include "raster/fastpath/merge_policy.hpp"
+#include "raster/fastpath/transparency.hpp"
+#include "raster/shader.hpp"
+#include "raster/stages/output_merger.hpp"
+#include "raster/stages/pixel_shader.hpp"
+#include "raster/stages/rasterizer.hpp"
+#include "raster/statistics.hpp"
+#include "raster/trace_recorder.hpp"
+
+#if defined(RASTER_NO_FLATTEN) || defined(__SANITIZE_ADDRESS__)
+#define RASTER_FLATTEN
+#else
+// The fill loops are flattened (their whole call tree inlined): their speed depends on the shader,
+// sampler and merge being one block of code (docs/PERFORMANCE.md). Sanitizer builds leave the
+// inlining to the compiler (RASTER_NO_FLATTEN, CMakeLists.txt): instrumented, the flattened tree
+// takes GCC minutes and gigabytes per file; what the code does is the same either way.
+#define RASTER_FLATTEN __attribute__((flatten))
+#endif
+
+namespace raster {
+
+namespace detail {
+
+// A copy of a trivially copyable shader (by reference otherwise: a shader that owns resources is
+// still called, only without the copy's benefit).
+template <class PS>
+struct WideShaderCopy {
+    std::conditional_t<std::is_trivially_copyable_v<PS>, PS, const PS&> value;
+    explicit WideShaderCopy(const PS& ps) : value(ps) {}
+    template <class In>
+    [[gnu::always_inline]] auto operator()(const In& in) const {
+        return value(in);
+    }
+};
+
+// Two neighbouring blocks' inputs as one Float8x2 input, the left block in half 0.
+template <class V>
+[[gnu::always_inline]] inline WidePair<V> zipBlocks(const Wide<V>& left, const Wide<V>& right) {
+    constexpr uint32_t kN = kVertexFloats<V>;
+    Float8 l[kN], r[kN];
+    std::memcpy(l, static_cast<const void*>(&left), sizeof l);
+    std::memcpy(r, static_cast<const void*>(&right), sizeof r);
+    Float8x2 f[kN];
+    for (uint32_t k = 0; k < kN; ++k) f[k] = Float8x2(l[k], r[k]);
+    WidePair<V> out;
+    static_assert(sizeof out == sizeof f);
+    std::memcpy(static_cast<void*>(&out), f, sizeof f);
+    return out;
+}
+// Block h (0 left, 1 right) of a Float8x2 shader's colour.
+inline glm::vec<4, Float8> blockOf(const glm::vec<4, Float8x2>& c, int h) {
+    return {c.x.h[h], c.y.h[h], c.z.h[h], c.w.h[h]};
+}
+
+}  // namespace detail
+
+// Which fill paths a draw may take, from its types alone. Real is float in the fast pipeline and
+// double in the reference one.
+template <class PS, class Real, class Tracer, class Depth, class Color>
+struct FillTraits {
+    // The reference pipeline tests depth after the shader, in D3D's literal order; the fast one
+    // before it (the result is the same: shaders here cannot write depth).
+    static constexpr bool kEarlyDepth = std::is_same_v<Real, float>;
+    // The shader runs eight pixels (a 4×2 block) per call.
+    static constexpr bool kWide = [] {
+        if constexpr (WidePixelShader<PS>)
+            return std::is_same_v<Real, float> && std::is_same_v<PixelShaderOutput<PS>, glm::vec4> &&
+                   !Tracer::kEnabled;
+        else
+            return false;
+    }();
+    // Eight-wide with an eight-wide depth test and blend: triangles take fill/triangles_wide.hpp.
+    static constexpr bool kWideMerge = kWide && Depth::kWide && Color::kWide;
+    // Two neighbouring blocks per shader call where the shader also takes Float8x2 (shadePair).
+    static constexpr bool kPairs = [] {
+        if constexpr (PairPixelShader<PS>)
+            return kWide;
+        else
+            return false;
+    }();
+    // Opaque draws with depth writes may be shaded deferred (fill/deferred.hpp).
+    static constexpr bool kDeferrable = [] {
+        if constexpr (requires { Depth::kWrite; })
+            return kWideMerge && Depth::kEnabled && Depth::kWrite &&
+                   std::is_same_v<Color, ColorFast<BlendReplaceRgba8>>;
+        else
+            return false;
+    }();
+    // Billboard pixels known to be transparent before shading are skipped (fastpath/transparency.hpp).
+    static constexpr bool kSkipTransparent = kWide && detail::kSkipsTransparent<PS, Depth, Color>;
+};
+
+// What all tiles of one draw read: the shader, the output merger's policies, the binned primitives.
+template <class PS, class V, class Depth, class Color>
+struct DrawFill {
+    const PS& ps;
+    const Depth& depth;
+    const Color& color;
+    const std::vector<detail::Chunk<V>>& chunks;
+    uint32_t chunkCount;
+    float minDepth, maxDepth;  // the viewport's depth range, which interpolated depths are clamped to
+    detail::TransparentColumns transparentColumns;  // skips nothing unless kSkipTransparent
+    // Every primitive through the plain path (fill/quads.hpp): ContextOptions::plain.
+    bool plain = false;
+};
+
+// One tile of one draw while a thread fills it: its rectangle, statistics and trace, and the plain
+// per-fragment steps of the output merger. Made per tile on the thread that fills it.
+template <class PS, class V, class Real, class Tracer, class Depth, class Color>
+class Tile : public FillTraits<PS, Real, Tracer, Depth, Color> {
+  public:
+    using Traits = FillTraits<PS, Real, Tracer, Depth, Color>;
+    using Draw = DrawFill<PS, V, Depth, Color>;
+    using Vertex = V;
+    using RealType = Real;
+    using DepthPolicyType = Depth;
+    using ColorPolicyType = Color;
+    using Out = PixelShaderOutput<PS>;
+
+    Tile(const Draw& draw, uint32_t index, const PixelRect& rect, PipelineStatistics& st,
+         const Tracer& tracer)
+        : draw(draw),
+          index(index),
+          rect(rect),
+          st(st),
+          shader(draw.ps),
+          wideShader(draw.ps),
+          tracer(tracer),
+          bounds(draw.depth, rect) {}
+
+    const Draw& draw;
+    const uint32_t index;  // in the tile grid: the bins' index
+    const PixelRect rect;
+    PipelineStatistics& st;
+    QuadShader<PS> shader;
+    // The eight-wide paths call a copy of the shader that lives on this thread's stack and whose
+    // address stays inside the inlined loop: the compiler may then keep the shader's constants
+    // (and what it computes from them alone) in registers across the blocks, which it cannot do
+    // through `ps`, since a store to the targets might, for all it knows, change `ps`.
+    const detail::WideShaderCopy<PS> wideShader;
+    Tracer tracer;
+    TileDepthBounds<Depth, !Tracer::kEnabled> bounds;
+
+    // The input primitive whose fragments follow, for the trace.
+    void notePrimitive([[maybe_unused]] uint32_t primitive_id) {
+        if constexpr (Tracer::kEnabled) tracer.primitive = primitive_id;
+    }
+
+    // A depth no fragment of triangle t lies in front of: interpolated depths stay within the
+    // vertices' (to double rounding, far below the 2^-20 margin) and are clamped to the viewport.
+    float nearestDepth(const TriangleSetup& t) const {
+        const float lowest = std::min({t.z[0], t.z[1], t.z[2]});
+        return std::clamp(lowest - std::abs(lowest) * 0x1p-20f, draw.minDepth, draw.maxDepth);
+    }
+
+    // Whether the depth test runs after the shader (the reference pipeline, DepthDynamic::late).
+    bool lateDepth() const {
+        if constexpr (!Traits::kEarlyDepth)
+            return true;
+        else if constexpr (std::is_same_v<Depth, DepthDynamic>)
+            return draw.depth.late;
+        else
+            return false;
+    }
+
+    // The early depth test of one fragment (the fast pipeline: before the shader), counted.
+    bool earlyDepthPasses(int32_t x, int32_t y, Real z) {
+        if constexpr (Tracer::kEnabled) tracer.covered(x, y);
+        if constexpr (Traits::kEarlyDepth && Depth::kEnabled) {
+            if (!lateDepth() && !draw.depth.test(x, y, float(z))) {
+                ++st.fragmentsEarlyDepthKilled;
+                if constexpr (Tracer::kEnabled)
+                    tracer.close(tracer.open(x, y, float(z), false, glm::vec4(0.0f)),
+                                 FragmentFate::EarlyDepthFailed);
+                return false;
+            }
+        }
+        return true;
+    }
+
+    // The output merger for one shaded fragment: discard, late depth test (the reference pipeline),
+    // depth write, blend.
+    FragmentFate mergeFragment(int32_t x, int32_t y, Real z, const Out& out) {
+        if (isDiscarded(out)) {
+            ++st.fragmentsDiscarded;
+            return FragmentFate::Discarded;
+        }
+        if constexpr (Depth::kEnabled) {
+            if (lateDepth() && !draw.depth.test(x, y, float(z))) {
+                ++st.fragmentsLateDepthKilled;
+                return FragmentFate::LateDepthFailed;
+            }
+        }
+        draw.depth.write(x, y, float(z));
+        const auto& colors = colorsOf(out);
+        if (draw.color.isNoOp(colors)) {
+            ++st.fragmentsBlendNoOp;
+            return FragmentFate::BlendNoOp;
+        }
+        draw.color.write(x, y, colors);
+        return FragmentFate::Written;
+    }
+    // mergeFragment, recorded in the trace when tracing.
+    void merge(int32_t x, int32_t y, Real z, const Out& out) {
+        if constexpr (Tracer::kEnabled) {
+            glm::vec4 target0(0.0f);
+            if (!isDiscarded(out)) {
+                const auto& colors = colorsOf(out);
+                target0 = detail::ColorTraits<std::decay_t<decltype(colors)>>::color(colors, 0);
+            }
+            const size_t record = tracer.open(x, y, float(z), !isDiscarded(out), target0);
+            tracer.close(record, mergeFragment(x, y, z, out));
+        } else {
+            mergeFragment(x, y, z, out);
+        }
+    }
+
+    // One 2×2 quad at (qx, qy), lanes in `mask`: early depth test, shader, output merger.
+    // depth_at(lane) gives a lane's depth, fill(lane, z, in) its shader input (also for helper lanes,
+    // which may lie outside the primitive).
+    template <class DepthAt, class FillInput>
+    void shadeQuad(int32_t qx, int32_t qy, uint32_t mask, DepthAt&& depth_at, FillInput&& fill) {
+        V in[4];
+        Out out[4];
+        Real z[4];
+        uint32_t live = 0;
+        for (uint32_t m = mask; m; m &= m - 1) {
+            const int lane = std::countr_zero(m);
+            z[lane] = depth_at(lane);
+            if (!earlyDepthPasses(qx + (lane & 1), qy + (lane >> 1), z[lane])) continue;
+            fill(lane, z[lane], in[lane]);
+            live |= 1u << lane;
+        }
+        if (!live) return;
+        st.psInvocations += uint64_t(std::popcount(live));
+        shader.shade(
+            in, live, out, [&](int lane, V& helper) { fill(lane, depth_at(lane), helper); }, st);
+        for (uint32_t m = live; m; m &= m - 1) {
+            const int lane = std::countr_zero(m);
+            merge(qx + (lane & 1), qy + (lane >> 1), z[lane], out[lane]);
+        }
+    }
+
+    // The eight-wide early depth test of a 4×2 block inside the tile: the covered lanes that pass,
+    // those that fail counted.
+    uint32_t depthTestBlock(const Depth& depth, int32_t x, int32_t y, Float8 z, uint32_t covered) {
+        const uint32_t live = covered & depth.testWide(x, y, z);
+        st.fragmentsEarlyDepthKilled += uint64_t(std::popcount(covered & ~live));
+        return live;
+    }
+    // One 4×2 block's inputs through an eight-wide shader, its invocations (lanes in `live`) and
+    // helper lanes counted.
+    template <class Shader, class In>
+    glm::vec<4, Float8> shadeInputWide(const Shader& s, const In& in, uint32_t live) {
+        const glm::vec<4, Float8> c = s(in);
+        const int n = std::popcount(live);
+        st.psInvocations += uint64_t(n);
+        st.helperInvocations += uint64_t(8 - n);
+        return c;
+    }
+    // One 4×2 block of a triangle through an eight-wide shader: its attributes interpolated, then
+    // shadeInputWide.
+    template <class Shader>
+    glm::vec<4, Float8> shadeBlockWide(const Shader& s, const TriangleInterpolant<Real>& ti,
+                                       const int64_t (&e)[3][8], const V* const (&verts)[3], int32_t x,
+                                       int32_t y, Float8 z, uint32_t live) {
+        Wide<V> in;
+        interpolateAttributesWide(ti, e, verts, x, y, z, in);
+        return shadeInputWide(s, in, live);
+    }
+    // Two such blocks of one triangle, interpolated already, through one Float8x2 call (the same
+    // bits as a call each): two shaders' dependency chains interleaved (see fill/rectangles.hpp).
+    // (A template over the input, Wide<V>, which exists only for vertex structs templated over
+    // their scalar type: a signature naming Wide<V> would not compile for the others.)
+    template <class Shader, class WideIn>
+    glm::vec<4, Float8x2> shadePairWide(const Shader& s, const WideIn& left, const WideIn& right,
+                                        uint32_t live_left, uint32_t live_right) {
+        const glm::vec<4, Float8x2> c = s(detail::zipBlocks<V>(left, right));
+        const int n = std::popcount(live_left) + std::popcount(live_right);
+        st.psInvocations += uint64_t(n);
+        st.helperInvocations += uint64_t(16 - n);
+        return c;
+    }
+};
+
+}  // namespace raster
