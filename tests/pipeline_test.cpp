@@ -523,7 +523,8 @@ TEST(PipelineStatisticsTest, ParticlesCountGeometryShaderWork) {
 // fragment by fragment through 2×2 quads: both must count the same fragments. Widths that are not a
 // multiple of 4 send the last column of tiles through the lane-by-lane fallback.
 TEST(PipelineStatisticsTest, ParticlesCountTheSameFragmentsEightWideAndTraced) {
-    for (const auto& [w, h] : {std::pair{320u, 180u}, std::pair{318u, 181u}}) {
+    for (const auto& size : {std::pair{320u, 180u}, std::pair{318u, 181u}}) {
+        const uint32_t w = size.first, h = size.second;  // not a structured binding: clang 14 cannot capture one
         auto scene = makeScene("particles", {.width = w, .height = h, .count = 900});
         auto drawStatistics = [&](bool traced) {
             Context ctx(ContextOptions{.threads = 2});

@@ -673,12 +673,36 @@ void clearTargets(const Input& s, Resources& r) {
     if (r.depth && !r.depth->empty()) r.depth->clear(s.depthClear);
 }
 
-void checkFinite(const Resources& r, bool color_bounded) {
-    for (const RenderTarget& t : r.targets) {
+// Whether blending into a float target can leave float range from bounded inputs. An equation whose
+// destination factor is neither Zero nor One, or whose source factor reads the destination, multiplies
+// the destination by up to 3 (1 - s for s in [-2, 2]) or by itself (1 - d.a) once per fragment that
+// lands on the pixel, and float arithmetic then rightly reaches ±Inf: D3D11 blends float targets in
+// float32, unclamped. (2026-12-03: alpha = (1 - d.a)·d.a - (1 - d.a)·s.a, RevSubtract, from a clear of
+// 0.6 under sprites of alpha 1: -0.16, -1.34, -5.47, -41.8, …, -Inf at the ninth overlapping fragment;
+// corpus issue30_blend_feedback_overflow.)
+// Min and Max stay within their operands, and Zero/One destination factors grow the destination by
+// at most a bounded term per fragment.
+bool readsDestination(Blend b) {
+    return b == Blend::DestAlpha || b == Blend::InvDestAlpha || b == Blend::DestColor ||
+           b == Blend::InvDestColor || b == Blend::SrcAlphaSat;
+}
+bool blendCanDiverge(const RenderTargetBlendDesc& d) {
+    if (!d.blendEnable) return false;
+    auto equation = [](BlendOp op, Blend src, Blend dst) {
+        if (op == BlendOp::Min || op == BlendOp::Max) return false;
+        return (dst != Blend::Zero && dst != Blend::One) || readsDestination(src);
+    };
+    return equation(d.blendOp, d.srcBlend, d.destBlend) || equation(d.blendOpAlpha, d.srcBlendAlpha, d.destBlendAlpha);
+}
+
+void checkFinite(const Resources& r, const BlendState& blend, bool color_bounded) {
+    for (size_t i = 0; i < r.targets.size(); ++i) {
+        const RenderTarget& t = r.targets[i];
         if (t.empty() || t.format() != Format::R32G32B32A32_FLOAT || !color_bounded) continue;
-        for (size_t i = 0; i < 4 * size_t(t.width()) * t.height(); ++i)
-            if (!std::isfinite(t.rgba32f()[i]))
-                finding("non-finite RGBA32F pixel value", std::to_string(t.rgba32f()[i]));
+        if (blendCanDiverge(blend.target(int(i)))) continue;
+        for (size_t k = 0; k < 4 * size_t(t.width()) * t.height(); ++k)
+            if (!std::isfinite(t.rgba32f()[k]))
+                finding("non-finite RGBA32F pixel value", std::to_string(t.rgba32f()[k]));
     }
     if (r.depth && !r.depth->empty())
         for (size_t i = 0; i < size_t(r.depth->width()) * r.depth->height(); ++i) {
@@ -750,7 +774,7 @@ Outcome runOn(Context& ctx, const Input& s, Resources& r, Trace* trace) {
     o.image = snapshot(r);
     if (o.threw && o.image != before) finding("a draw that threw changed a render target:", o.message);
     // Colour outputs are bounded unless the sampler is invalid (an unspecified colour, sampler.hpp).
-    if (!o.threw) checkFinite(r, s.shaderSet < 4 || s.samplerValid);
+    if (!o.threw) checkFinite(r, s.blend, s.shaderSet < 4 || s.samplerValid);
     return o;
 }
 

@@ -26,11 +26,16 @@
 // -Wmaybe-uninitialized reports wherever they are inlined (fixed in GCC 13). The warning is judged
 // at the header's lines, so it is silenced for them here, where the header is first included, and
 // stays on for the project's own code.
+// Clang (the fuzz and sanitizer builds) has no -Wmaybe-uninitialized and needs none of this.
+#if defined(__clang__)
+#include <immintrin.h>
+#else
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #pragma GCC diagnostic ignored "-Wuninitialized"
 #include <immintrin.h>
 #pragma GCC diagnostic pop
+#endif
 #endif
 
 // Whether the core has AVX-512 (F, BW, DQ, VL): then the particles' pair of 4×2 blocks is sampled
