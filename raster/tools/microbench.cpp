@@ -8,6 +8,7 @@
 //   Gs/FrontEnd  runGeometryShader(GsBillboard), and the particles scene at 64×36     items = points
 //   Sample     Texture2D::Sample / SampleLevel                                          items = samples
 //   Scene      whole frames of the two benchmark scenes at 1280×720                   items = frames
+//   Particles  simulation steps, upload and depth sorts of 10^6 particles (microbench_particles.cpp)
 // Benchmarks are registered here, not at static-initialisation time, so that the other subcommands
 // of the program carry none of this. All data is made before the timed loops.
 #include <benchmark/benchmark.h>
@@ -33,6 +34,9 @@
 #include "raster/shaders/billboard.hpp"
 
 namespace raster::tools {
+
+void registerParticleBenchmarks();  // microbench_particles.cpp
+
 namespace {
 
 constexpr uint32_t kWidth = 1280, kHeight = 720;
@@ -474,6 +478,7 @@ void registerAll() {
         ->ArgName("threads")->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
     RegisterBenchmark("Scene/fog_1280x720_16x16", BM_SceneFog)
         ->ArgName("threads")->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+    registerParticleBenchmarks();
 }
 
 // args: the command line after "microbench", for Google Benchmark, which wants a program name first.
