@@ -14,7 +14,7 @@ namespace raster {
 
 namespace detail {
 // Draws made in this translation unit take the generic depth and colour policies only (the same
-// bits): 12 instantiations of the tile loop per shader set instead of 32, so a file that draws
+// bits): 6 instantiations of the tile loop per shader set instead of 16, so a file that draws
 // compiles in a fraction of the time. labs/CMakeLists.txt defines RASTER_DRAWS_GENERIC_ONLY for the
 // labs and their solutions (labs/README.md: the lab loop). A constant per translation unit (internal
 // linkage); the draws it changes are of the unit's own shaders, which are local to it.
@@ -226,33 +226,32 @@ template <class PS, class V>
 void Context::rasterizeDraw(const PS& ps, std::vector<detail::Chunk<V>>& chunks, uint32_t chunk_count,
                             const DrawPlan& p, PipelineStatistics& stats, TraceDraw* trace_draw,
                             uint32_t draw_index) {
-    // The policies for the draw's state, chosen once per draw: specialised where the state is a common
-    // one (fastpath/merge_policy.hpp), else generic.
+    // The policies for the draw's state, chosen once per draw (fastpath/merge_policy.hpp).
     const DepthPolicy depth = chooseDepthPolicy(depth_stencil_, depth_, options_.reference);
     const ColorPolicy color = chooseColorPolicy(blend_, p.targets.data(), p.targetCount, options_.reference);
     if (isOrderIndependent(blend_, p.targetCount)) ++stats.sortsAvoided;
-    // The same state through the generic policies only: the same bits, the state read per fragment.
-    // Traced draws, the plain path and lab translation units take these.
-    detail::TracingDepthPolicy generic_depth = detail::tracingDepthPolicy(depth);
-    const detail::TracingColorPolicy generic_color =
-        detail::tracingColorPolicy(color, blend_, p.targets.data(), p.targetCount);
+    // A common state, untraced and not stepped: the tile loop with the state folded in and the
+    // eight-wide fill paths (kSpecialisedPair).
+    if constexpr (!detail::kDrawsGenericOnly) {
+        if (!trace_draw && !options_.plain && isSpecialised(depth, color)) {
+            std::visit(
+                [&](const auto& d, const auto& c) {
+                    if constexpr (kSpecialisedPair<std::decay_t<decltype(d)>, std::decay_t<decltype(c)>>)
+                        renderTiles<PS, V, float>(ps, chunks, chunk_count, p, d, c, stats, detail::NoTracer{});
+                },
+                depth, color);
+            return;
+        }
+    }
+    // Everything else (traced draws, the plain path, files that draw through the generic policies
+    // only, and the states without a specialisation) reads the state per fragment: the same bits.
+    GenericDepthPolicy generic_depth = genericDepthPolicy(depth);
+    const GenericColorPolicy generic_color = genericColorPolicy(color, blend_, p.targets.data(), p.targetCount);
     if (auto* dynamic = std::get_if<DepthDynamic>(&generic_depth))
         dynamic->late = options_.plain;  // D3D's order
-    auto render = [&](const auto& d, const auto& c, const auto& tracer) {
-        using D = std::decay_t<decltype(d)>;
-        using C = std::decay_t<decltype(c)>;
-        constexpr bool kReferenceColor = std::is_same_v<C, ColorGeneric<double>>;
-        constexpr bool kReferenceDepth = std::is_same_v<D, DepthOff> || std::is_same_v<D, DepthDynamic>;
-        if constexpr (kReferenceColor && !kReferenceDepth) {
-            RASTER_CHECK(!"the reference pipeline uses only the dynamic depth policy");
-        } else {
-            renderTiles<PS, V, std::conditional_t<kReferenceColor, double, float>>(ps, chunks, chunk_count, p,
-                                                                                   d, c, stats, tracer);
-        }
-    };
+    detail::FragmentTracer tracer;  // records only a traced draw's fragments, fragment by fragment
     if (trace_draw) {
-        // Fragment by fragment, so that every fragment passes through the recorder.
-        detail::FragmentTracer tracer;
+        tracer.active = true;
         tracer.filter = trace_->options().pixels;
         tracer.draw = draw_index;
         tracer.color = p.targetCount > 0 ? p.targets[0] : nullptr;
@@ -260,21 +259,15 @@ void Context::rasterizeDraw(const PS& ps, std::vector<detail::Chunk<V>>& chunks,
         tracer.overdraw = trace_->overdrawData();
         tracer.nonFinite = trace_->nonFiniteData();
         tracer.width = p.width;
-        std::visit([&](const auto& d, const auto& c) { render(d, c, tracer); }, generic_depth, generic_color);
-        return;
     }
-    auto generic = [&] {
-        std::visit([&](const auto& d, const auto& c) { render(d, c, detail::NoTracer{}); }, generic_depth,
-                   generic_color);
-    };
-    if constexpr (detail::kDrawsGenericOnly) {
-        generic();
-    } else {
-        if (options_.plain)
-            generic();
-        else
-            std::visit([&](const auto& d, const auto& c) { render(d, c, detail::NoTracer{}); }, depth, color);
-    }
+    std::visit(
+        [&](const auto& d, const auto& c) {
+            using C = std::decay_t<decltype(c)>;
+            // The reference pipeline computes in double (ColorGeneric<double>).
+            using Real = std::conditional_t<std::is_same_v<C, ColorGeneric<double>>, double, float>;
+            renderTiles<PS, V, Real>(ps, chunks, chunk_count, p, d, c, stats, tracer);
+        },
+        generic_depth, generic_color);
 }
 
 template <class VS, class GS, class PS>
@@ -332,20 +325,19 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
         PipelineStatistics s;
     };
     std::vector<ThreadStatistics> per_thread(pool_.size());
-    [[maybe_unused]] std::vector<std::vector<TraceFragment>> traced_tiles(Tracer::kEnabled ? plan.grid.count()
-                                                                                           : 0);
+    [[maybe_unused]] std::vector<std::vector<TraceFragment>> traced_tiles(tracer.active ? plan.grid.count() : 0);
     RenderProgress* const progress = progress_;
     if (progress) progress->beginTiles(plan.grid.count());
     pool_.parallelFor(plan.grid.count(), [&](uint32_t index, unsigned thread) {
         const detail::ReferenceModeGuard reference(std::is_same_v<Real, double>);
         TileFill tile(draw, index, plan.grid.tileRect(index), per_thread[thread].s, tracer);
         fillTile(tile);
-        if constexpr (Tracer::kEnabled) traced_tiles[index] = std::move(tile.tracer.fragments);
+        if constexpr (Tracer::kEnabled)
+            if (tracer.active) traced_tiles[index] = std::move(tile.tracer.fragments);
         if (progress) progress->tileFinished();  // per tile, never per pixel: see RenderProgress
     });
     for (const ThreadStatistics& t : per_thread) stats += t.s;
-    if constexpr (Tracer::kEnabled)
-        for (const auto& fragments : traced_tiles) trace_->addFragments(fragments);
+    for (const auto& fragments : traced_tiles) trace_->addFragments(fragments);
 }
 
 }  // namespace raster

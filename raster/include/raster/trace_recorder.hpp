@@ -1,7 +1,11 @@
 // The pipeline trace's hooks in the per-pixel loop (see raster/trace.hpp). The loop is a template
-// over a Tracer: NoTracer's hooks are `if constexpr`-ed away, so an untraced draw has none of
-// this code; FragmentTracer records one tile's fragments into its own vector (no locks: a pixel
-// belongs to one tile, so the per-pixel counts are written by one thread only).
+// over a Tracer: NoTracer's hooks are `if constexpr`-ed away, so a draw through the specialised
+// policies has none of this code; FragmentTracer records one tile's fragments into its own vector
+// (no locks: a pixel belongs to one tile, so the per-pixel counts are written by one thread only).
+// Draws through the generic policies always take FragmentTracer, recording or not (`active`): one
+// instantiation of the tile loop serves traced and untraced generic draws alike, which halves what
+// a file that draws through the generic policies only (a lab) compiles. Its hooks then cost one
+// predictable branch per fragment, on the path that reads the state per fragment anyway.
 #pragma once
 
 #include <cmath>
@@ -21,12 +25,16 @@ namespace raster::detail {
 
 struct NoTracer {
     static constexpr bool kEnabled = false;
+    static constexpr bool active = false;
 };
 
 struct FragmentTracer {
+    // The hooks are compiled in (the fill paths that cannot call them per fragment are not); whether
+    // they record is `active`.
     static constexpr bool kEnabled = true;
     static constexpr size_t kNone = SIZE_MAX;
 
+    bool active = false;  // false: every hook returns at once, and the draw records nothing
     PixelRect filter;
     uint32_t draw = 0;
     uint32_t primitive = 0;
@@ -38,7 +46,9 @@ struct FragmentTracer {
     std::vector<TraceFragment> fragments;  // this tile's, in output-merger order
 
     // A fragment was rasterised (counted before any test).
-    void covered(int32_t x, int32_t y) const { ++overdraw[size_t(y) * width + x]; }
+    void covered(int32_t x, int32_t y) const {
+        if (active) ++overdraw[size_t(y) * width + x];
+    }
 
     bool wanted(int32_t x, int32_t y) const {
         return x >= filter.x0 && x <= filter.x1 && y >= filter.y0 && y <= filter.y1;
@@ -48,6 +58,7 @@ struct FragmentTracer {
 
     // Opens a record before the output merger touches the pixel; kNone when the pixel is not traced.
     size_t open(int32_t x, int32_t y, float z, bool shaded, const glm::vec4& output) {
+        if (!active) return kNone;
         if (shaded && !(std::isfinite(output.x) && std::isfinite(output.y) && std::isfinite(output.z) &&
                         std::isfinite(output.w)))
             ++nonFinite[size_t(y) * width + x];
@@ -73,32 +84,6 @@ struct FragmentTracer {
         f.colorAfter = color ? color->load(uint32_t(f.x), uint32_t(f.y)) : nan4();
     }
 };
-
-// The depth and colour policies of a traced draw: the generic ones, whose bits are the
-// specialised ones' (output_merger_test and trace_test check it), compiled once per shader.
-using TracingDepthPolicy = std::variant<DepthOff, DepthDynamic>;
-using TracingColorPolicy = std::variant<ColorNone, ColorGeneric<float>, ColorGeneric<double>>;
-
-inline TracingDepthPolicy tracingDepthPolicy(const DepthPolicy& policy) {
-    return std::visit(
-        [](const auto& d) -> TracingDepthPolicy {
-            using D = std::decay_t<decltype(d)>;
-            if constexpr (std::is_same_v<D, DepthOff> || std::is_same_v<D, DepthDynamic>)
-                return d;
-            else
-                return DepthDynamic{d.depth, d.width, D::kFunc, D::kWrite};
-        },
-        policy);
-}
-
-inline TracingColorPolicy tracingColorPolicy(const ColorPolicy& policy, const BlendState& blend,
-                                             RenderTarget* const* targets, int count) {
-    if (std::holds_alternative<ColorNone>(policy)) return ColorNone{};
-    if (std::holds_alternative<ColorGeneric<double>>(policy)) return std::get<ColorGeneric<double>>(policy);
-    if (std::holds_alternative<ColorGeneric<float>>(policy)) return std::get<ColorGeneric<float>>(policy);
-    return ColorGeneric<float>{targets, count, &blend,
-                               std::holds_alternative<ColorFast<BlendAdditiveRgba8>>(policy)};
-}
 
 // Vertex shader records: the first `cap` invocations' inputs (fetched again, as the input
 // assembler did) and outputs.

@@ -1,11 +1,14 @@
 // How the per-pixel loop talks to the depth buffer and the render targets, chosen once per draw.
 //
 // The pipeline looks at the draw's depth-stencil and blend state and the bound targets, picks one
-// depth policy and one colour policy, and instantiates the tile loop for that pair: the common
-// states (depth LESS / LESS_EQUAL with or without write, blending off or the lecture's additive
-// blend on one RGBA8 target) get code with the state folded in at compile time; anything else
-// takes the generic policies, which read the state per fragment. The reference pipeline always
-// takes the generic policies, in double.
+// depth policy and one colour policy, and instantiates the tile loop for that pair. The lecture's
+// common states get code with the state folded in at compile time and the eight-wide fill paths
+// (kSpecialisedPair: depth off or LESS / LESS_EQUAL with or without write, against blending off or
+// the lecture's additive blend into one RGBA8 target: 10 pairs). Anything else takes the generic
+// policies, which read the state per fragment (genericDepthPolicy, genericColorPolicy): the same
+// bits, 6 pairs, compiled once per shader set and shared with traced draws, the plain path and
+// files that draw through the generic policies only (labs). The reference pipeline always takes
+// the generic policies, in double.
 #pragma once
 
 #include <cstdint>
@@ -377,6 +380,52 @@ struct ColorNone {  // no render target bound: a depth-only pass
 
 using ColorPolicy = std::variant<ColorNone, ColorFast<BlendReplaceRgba8>, ColorFast<BlendAdditiveRgba8>,
                                  ColorGeneric<float>, ColorGeneric<double>>;
+
+template <class Color>
+constexpr bool kIsColorFast = false;
+template <class Blender>
+constexpr bool kIsColorFast<ColorFast<Blender>> = true;
+
+// The pairs the tile loop is compiled for with the state folded in (see the top of this file).
+// Why these: they are the lecture's opaque geometry and its additive particles, what the benchmark
+// scenes draw; each pair costs about a second of -O3 compile per shader set, so a pair is added
+// where a scene needs its speed, not for completeness.
+template <class Depth, class Color>
+constexpr bool kSpecialisedPair = !std::is_same_v<Depth, DepthDynamic> && kIsColorFast<Color>;
+
+inline bool isSpecialised(const DepthPolicy& depth, const ColorPolicy& color) {
+    return std::visit(
+        [](const auto& d, const auto& c) {
+            return kSpecialisedPair<std::decay_t<decltype(d)>, std::decay_t<decltype(c)>>;
+        },
+        depth, color);
+}
+
+// The same state through the generic policies: the same bits as the specialised ones
+// (output_merger_test and trace_test check it), the state read per fragment.
+using GenericDepthPolicy = std::variant<DepthOff, DepthDynamic>;
+using GenericColorPolicy = std::variant<ColorNone, ColorGeneric<float>, ColorGeneric<double>>;
+
+inline GenericDepthPolicy genericDepthPolicy(const DepthPolicy& policy) {
+    return std::visit(
+        [](const auto& d) -> GenericDepthPolicy {
+            using D = std::decay_t<decltype(d)>;
+            if constexpr (std::is_same_v<D, DepthOff> || std::is_same_v<D, DepthDynamic>)
+                return d;
+            else
+                return DepthDynamic{d.depth, d.width, D::kFunc, D::kWrite};
+        },
+        policy);
+}
+
+inline GenericColorPolicy genericColorPolicy(const ColorPolicy& policy, const BlendState& blend,
+                                             RenderTarget* const* targets, int count) {
+    if (std::holds_alternative<ColorNone>(policy)) return ColorNone{};
+    if (std::holds_alternative<ColorGeneric<double>>(policy)) return std::get<ColorGeneric<double>>(policy);
+    if (std::holds_alternative<ColorGeneric<float>>(policy)) return std::get<ColorGeneric<float>>(policy);
+    return ColorGeneric<float>{targets, count, &blend,
+                               std::holds_alternative<ColorFast<BlendAdditiveRgba8>>(policy)};
+}
 
 inline bool sameBlend(const RenderTargetBlendDesc& a, const RenderTargetBlendDesc& b) {
     return a.blendEnable == b.blendEnable && a.srcBlend == b.srcBlend && a.destBlend == b.destBlend &&

@@ -229,6 +229,10 @@ class Tile : public FillTraits<PS, Real, Tracer, Depth, Color> {
     // mergeFragment, recorded in the trace when tracing.
     void merge(int32_t x, int32_t y, Real z, const Out& out) {
         if constexpr (Tracer::kEnabled) {
+            if (!tracer.active) {
+                mergeFragment(x, y, z, out);
+                return;
+            }
             glm::vec4 target0(0.0f);
             if (!isDiscarded(out)) {
                 const auto& colors = colorsOf(out);
