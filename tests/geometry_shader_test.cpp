@@ -15,6 +15,7 @@
 #include "raster/shaders/basic.hpp"
 #include "lecture/fire_shaders.hpp"
 #include "raster/shaders/billboard.hpp"
+#include "raster/pipeline_impl.hpp"
 
 namespace raster {
 namespace {

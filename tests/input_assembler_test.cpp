@@ -15,6 +15,7 @@
 #include "raster/input_layout.hpp"
 #include "raster/pipeline.hpp"
 #include "raster/shaders/basic.hpp"
+#include "raster/pipeline_impl.hpp"
 
 namespace raster {
 namespace {

@@ -19,6 +19,7 @@
 #include "raster/scenes.hpp"
 #include "raster/shaders/basic.hpp"
 #include "raster/trace.hpp"
+#include "raster/pipeline_impl.hpp"
 
 namespace raster {
 namespace {

@@ -17,6 +17,7 @@
 #include "raster/shader_context.hpp"
 #include "raster/shaders/basic.hpp"
 #include "raster/texture.hpp"
+#include "raster/pipeline_impl.hpp"
 
 #include "eight_only.hpp"
 

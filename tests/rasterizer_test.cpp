@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "raster/pipeline.hpp"
+#include "raster/pipeline_impl.hpp"
 
 namespace raster {
 namespace {

@@ -19,6 +19,7 @@
 #include "raster/simd.hpp"
 #include "raster/fastpath/transparency.hpp"
 #include "raster/texture.hpp"
+#include "raster/pipeline_impl.hpp"
 
 #include "eight_only.hpp"
 

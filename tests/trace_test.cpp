@@ -18,6 +18,7 @@
 #include "raster/pipeline.hpp"
 #include "raster/scenes.hpp"
 #include "raster/shaders/basic.hpp"
+#include "raster/pipeline_impl.hpp"
 
 namespace raster {
 namespace {

@@ -1,4 +1,5 @@
 #include "raster/pipeline.hpp"
+#include "raster/pipeline_impl.hpp"
 
 #include <cmath>
 #include <initializer_list>
@@ -6,7 +7,11 @@
 
 namespace raster {
 
-Context::Context(const ContextOptions& options) : options_(options), pool_(options.threads) {}
+Context::Context(const ContextOptions& options)
+    : options_(options), pool_(std::make_unique<ThreadPool>(options.threads)), scratch_(std::make_unique<Scratch>()) {}
+Context::~Context() = default;
+
+unsigned Context::threads() const { return pool_->size(); }
 
 namespace {
 
@@ -87,12 +92,12 @@ constexpr uint32_t kClearBandRows = 32;
 
 void Context::clearRenderTarget(RenderTarget& target, const glm::vec4& color) {
     const uint32_t bands = (target.height() + kClearBandRows - 1) / kClearBandRows;
-    pool_.parallelFor(bands, [&](uint32_t band, unsigned) { target.clearRows(color, band * kClearBandRows, kClearBandRows); });
+    pool_->parallelFor(bands, [&](uint32_t band, unsigned) { target.clearRows(color, band * kClearBandRows, kClearBandRows); });
 }
 
 void Context::clearDepthTarget(DepthTarget& target, float depth) {
     const uint32_t bands = (target.height() + kClearBandRows - 1) / kClearBandRows;
-    pool_.parallelFor(bands, [&](uint32_t band, unsigned) { target.clearRows(depth, band * kClearBandRows, kClearBandRows); });
+    pool_->parallelFor(bands, [&](uint32_t band, unsigned) { target.clearRows(depth, band * kClearBandRows, kClearBandRows); });
 }
 
 Context::DrawPlan Context::plan(int pixel_shader_targets, bool, PrimitiveKind) const {

@@ -3,6 +3,7 @@
 
 #include "raster/shaders/basic.hpp"
 #include "raster/shaders/fog.hpp"
+#include "raster/pipeline_impl.hpp"
 #include "scene_list.hpp"
 
 namespace raster {

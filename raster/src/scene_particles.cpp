@@ -4,6 +4,7 @@
 #include "lecture/fire_shaders.hpp"
 #include "raster/shaders/basic.hpp"
 #include "raster/shaders/billboard.hpp"
+#include "raster/pipeline_impl.hpp"
 #include "scene_list.hpp"
 
 namespace raster {

@@ -36,6 +36,7 @@
 #include "lecture/fire_shaders.hpp"
 #include "raster/shaders/billboard.hpp"
 #include "raster/texture.hpp"
+#include "raster/pipeline_impl.hpp"
 
 namespace {
 

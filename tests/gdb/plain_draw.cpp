@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "raster/pipeline.hpp"
+#include "raster/pipeline_impl.hpp"
 
 namespace {
 

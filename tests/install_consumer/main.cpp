@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <raster/pipeline.hpp>
 #include <raster/shaders/basic.hpp>
+#include <raster/pipeline_impl.hpp>
 #include <vector>
 
 int main() {

@@ -15,6 +15,10 @@
 //   ctx.setBlendState(raster::BlendState::additive());
 //   ctx.draw(VsBillboard{}, GsBillboard{...}, PsFire{...}, particleCount);
 //
+// A file that draws includes raster/pipeline_impl.hpp too (the template pipeline, compiled for its
+// shaders; a file that only binds state or holds a Context need not parse it), or, in a lab,
+// raster/teaching_draw.hpp (the library's one compiled teaching pipeline; raster/lab.hpp includes it).
+//
 // A draw validates everything first (states, layout against the vertex shader's input, buffer
 // ranges, target sizes) and runs all geometry stages before it writes a pixel, so a draw that
 // throws raster::Error leaves the render targets exactly as they were. The image is the same,
@@ -29,33 +33,23 @@
 #include <memory>
 #include <span>
 #include <string>
-#include <typeindex>
-#include <unordered_map>
 #include <vector>
 
 #include "raster/buffer.hpp"
 #include "raster/check.hpp"
-#include "raster/fastpath/merge_policy.hpp"
-#include "raster/fastpath/transparency.hpp"
 #include "raster/input_layout.hpp"
 #include "raster/render_target.hpp"
 #include "raster/shader.hpp"
 #include "raster/stages/binner.hpp"
-#include "raster/stages/clipper.hpp"
-#include "raster/stages/geometry_shader.hpp"
 #include "raster/stages/input_assembler.hpp"
-#include "raster/stages/output_merger.hpp"
-#include "raster/stages/pixel_shader.hpp"
-#include "raster/stages/rasterizer.hpp"
-#include "raster/stages/setup.hpp"
-#include "raster/stages/vertex_shader.hpp"
 #include "raster/states.hpp"
 #include "raster/statistics.hpp"
-#include "raster/thread_pool.hpp"
+#include "raster/teaching_pipeline.hpp"
 #include "raster/trace.hpp"
-#include "raster/trace_recorder.hpp"
 
 namespace raster {
+
+class ThreadPool;  // thread_pool.hpp: held through a pointer, so that this header need not parse <thread>
 
 // drawStatisticsLog keeps at most this many draws between resets (a frame rarely has more).
 constexpr size_t kMaxLoggedDraws = 1 << 16;
@@ -146,6 +140,9 @@ struct LastGeometryStage<NoGeometryShader, VsOut> {
 class Context {
   public:
     explicit Context(const ContextOptions& options = {});
+    ~Context();
+    Context(const Context&) = delete;
+    Context& operator=(const Context&) = delete;
 
     // ---- Input assembler ----
     void setInputLayout(const InputLayout* layout) { layout_ = layout; }
@@ -213,6 +210,13 @@ class Context {
     // both as Error(OutOfMemory), never std::bad_alloc.
     template <VertexShader VS, GeometryShader GS, PixelShader PS>
     void execute(const VS& vs, const GS& gs, const PS& ps, const DrawCall& call);
+    // The same draw through the teaching pipeline (teaching_pipeline.hpp), compiled in the library:
+    // what execute() calls in a file that includes raster/teaching_draw.hpp.
+    void executeTeaching(const TeachingVertexShader& vs, const TeachingPixelShader& ps, const DrawCall& call);
+    void executeTeaching(const TeachingVertexShader& vs, const TeachingPointGeometryShader& gs,
+                         const TeachingPixelShader& ps, const DrawCall& call);
+    void executeTeaching(const TeachingVertexShader& vs, const TeachingTriangleGeometryShader& gs,
+                         const TeachingPixelShader& ps, const DrawCall& call);
 
     // ---- Statistics ----
     const PipelineStatistics& drawStatistics() const { return draw_stats_; }    // the last draw
@@ -259,7 +263,7 @@ class Context {
         draw_count_ = 0;
     }
 
-    unsigned threads() const { return pool_.size(); }
+    unsigned threads() const;
     bool reference() const { return options_.reference; }
 
   private:
@@ -284,20 +288,17 @@ class Context {
         std::vector<detail::Chunk<typename detail::LastGeometryStage<GS, VsOut>::Vertex>>& chunks);
     // The chunks' statistics and trace records into the draw's; a geometry shader's overflow throws.
     template <class GS, class V>
-    void gatherChunks(std::vector<detail::Chunk<V>>& chunks, uint32_t chunk_count, PipelineStatistics& stats,
-                      TraceDraw* trace_draw);
+    void gatherChunks(const GS& gs, std::vector<detail::Chunk<V>>& chunks, uint32_t chunk_count,
+                      PipelineStatistics& stats, TraceDraw* trace_draw);
     // rasterize → PS → OM: the depth and colour policies for the draw's state, then renderTiles.
     template <class PS, class V>
     void rasterizeDraw(const PS& ps, std::vector<detail::Chunk<V>>& chunks, uint32_t chunk_count,
                        const DrawPlan& p, PipelineStatistics& stats, TraceDraw* trace_draw,
                        uint32_t draw_index);
 
+    // A buffer of type T kept from draw to draw, so that a frame's draws reuse their allocations.
     template <class T>
-    T& scratch() {
-        auto& slot = scratch_[std::type_index(typeid(T))];
-        if (!slot) slot = std::shared_ptr<void>(new T(), [](void* p) { delete static_cast<T*>(p); });
-        return *static_cast<T*>(slot.get());
-    }
+    T& scratch();
 
     template <class PS, class V, class Real, class Tracer, class Depth, class Color>
     void renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, uint32_t chunk_count,
@@ -305,10 +306,10 @@ class Context {
                      const Tracer& tracer);
     // Starts the trace's record of a draw.
     template <class VS, class GS, class PS>
-    TraceDraw& beginTraceDraw(uint32_t draw_index, const DrawPlan& plan);
+    TraceDraw& beginTraceDraw(const VS& vs, const GS& gs, const PS& ps, uint32_t draw_index, const DrawPlan& plan);
 
     ContextOptions options_;
-    ThreadPool pool_;
+    std::unique_ptr<ThreadPool> pool_;
     const InputLayout* layout_ = nullptr;
     Topology topology_ = Topology::Undefined;
     std::array<const VertexBuffer*, kMaxInputSlots> vertex_buffers_{};
@@ -324,11 +325,10 @@ class Context {
     std::vector<PipelineStatistics> draw_log_;
     StepLimit step_limit_;
     uint32_t draw_count_ = 0;
-    std::unordered_map<std::type_index, std::shared_ptr<void>> scratch_;
+    struct Scratch;  // pipeline_impl.hpp
+    std::unique_ptr<Scratch> scratch_;
     Trace* trace_ = nullptr;
     RenderProgress* progress_ = nullptr;
 };
 
 }  // namespace raster
-
-#include "raster/pipeline_impl.hpp"

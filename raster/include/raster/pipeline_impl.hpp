@@ -1,14 +1,39 @@
-// The draw itself, stage by stage. Included by pipeline.hpp; read that first.
+// The draw itself, stage by stage: the template pipeline, compiled for the shaders of each file that
+// includes it (the benchmark scenes, the tools, the tests). raster/pipeline.hpp declares the draw;
+// a file that draws includes this, or raster/teaching_draw.hpp (labs: the library's one compiled
+// teaching pipeline), never both.
 #pragma once
+
+#ifdef RASTER_TEACHING_DRAW_INCLUDED
+#error "raster/pipeline_impl.hpp and raster/teaching_draw.hpp define the same draws: include one of them"
+#endif
+#define RASTER_PIPELINE_IMPL_INCLUDED 1
 
 #include <bit>
 #include <limits>
 #include <memory>
 #include <optional>
 #include <type_traits>
+#include <typeindex>
+#include <unordered_map>
 #include <variant>
 
+#include "raster/fastpath/merge_policy.hpp"
+#include "raster/fastpath/transparency.hpp"
 #include "raster/fill/fill_tile.hpp"
+#include "raster/pipeline.hpp"
+#include "raster/stages/binner.hpp"
+#include "raster/stages/clipper.hpp"
+#include "raster/stages/geometry_shader.hpp"
+#include "raster/stages/input_assembler.hpp"
+#include "raster/stages/output_merger.hpp"
+#include "raster/stages/pixel_shader.hpp"
+#include "raster/stages/rasterizer.hpp"
+#include "raster/stages/setup.hpp"
+#include "raster/stages/vertex_shader.hpp"
+#include "raster/teaching_pipeline.hpp"
+#include "raster/thread_pool.hpp"
+#include "raster/trace_recorder.hpp"
 
 namespace raster {
 
@@ -25,6 +50,17 @@ constexpr bool kDrawsGenericOnly = false;
 #endif
 }  // namespace detail
 
+struct Context::Scratch {
+    std::unordered_map<std::type_index, std::shared_ptr<void>> buffers;
+};
+
+template <class T>
+T& Context::scratch() {
+    auto& slot = scratch_->buffers[std::type_index(typeid(T))];
+    if (!slot) slot = std::shared_ptr<void>(new T(), [](void* p) { delete static_cast<T*>(p); });
+    return *static_cast<T*>(slot.get());
+}
+
 template <VertexShader VS, GeometryShader GS, PixelShader PS>
 void Context::execute(const VS& vs, const GS& gs, const PS& ps, const DrawCall& call) {
     const uint32_t draw_index = draw_count_;
@@ -34,7 +70,7 @@ void Context::execute(const VS& vs, const GS& gs, const PS& ps, const DrawCall& 
         // Counts the caller passed were checked against the machine (requireMemory) before anything
         // was allocated; this is the machine running out while the stages run.
         throw Error(ErrorCode::OutOfMemory,
-                    "draw " + std::to_string(draw_index) + " (" + typeName<VS>() + ", " + typeName<PS>() +
+                    "draw " + std::to_string(draw_index) + " (" + detail::shaderName(vs) + ", " + detail::shaderName(ps) +
                         ", " + std::to_string(call.count) + " vertices × " +
                         std::to_string(call.instanceCount) +
                         " instances): an allocation of its stages failed (the machine may hold " +
@@ -52,8 +88,6 @@ void Context::executeDraw(const VS& vs, const GS& gs, const PS& ps, const DrawCa
         std::is_same_v<PixelShaderInput<PS>, Vertex>,
         "the pixel shader's input struct must be the geometry shader's output struct (or, without a "
         "geometry shader, the vertex shader's)");
-    using PsOut = PixelShaderOutput<PS>;
-    constexpr int kPsTargets = detail::ColorTraits<PsOut>::kTargets;
     PrimitiveKind gs_input = PrimitiveKind::Triangle;
     if constexpr (kHasGs) {
         static_assert(std::is_same_v<GeometryShaderInput<GS>, VsOut>,
@@ -62,15 +96,15 @@ void Context::executeDraw(const VS& vs, const GS& gs, const PS& ps, const DrawCa
     }
 
     // ---- Validation: every check that can fail runs before anything is written ----
-    const DrawPlan p = plan(kPsTargets, kHasGs, gs_input);
+    const DrawPlan p = plan(detail::pixelShaderTargets(ps), kHasGs, gs_input);
     RASTER_REQUIRE(layout_ != nullptr, InvalidState, "draw without an input layout: call setInputLayout");
-    const auto signature = VsIn::inputSignature();
-    const std::vector<InputFetch> program = layout_->bind(signature, sizeof(VsIn), typeName<VsIn>().c_str());
+    const detail::VertexInputDescription vs_input = detail::vertexInputOf(vs);
+    const std::vector<InputFetch> program = layout_->bind(vs_input.signature, vs_input.bytes, vs_input.name.c_str());
     // ---- IA: which vertices, which primitives ----
     const AssembledDraw assembled = assemble(topology_, call, index_buffer_);
     if constexpr (kHasGs) {
         RASTER_REQUIRE(assembled.kind == gs_input, InvalidState,
-                       "geometry shader " + typeName<GS>() + " takes " + std::to_string(int(gs_input)) +
+                       "geometry shader " + detail::shaderName(gs) + " takes " + std::to_string(int(gs_input)) +
                            "-vertex primitives but the topology makes " +
                            std::to_string(int(assembled.kind)) + "-vertex ones");
     }
@@ -82,11 +116,11 @@ void Context::executeDraw(const VS& vs, const GS& gs, const PS& ps, const DrawCa
                   "the draw's " + std::to_string(vs_outputs) + " vertex shader outputs (" +
                       std::to_string(assembled.fetch.size()) + " vertices × " +
                       std::to_string(call.instanceCount) + " instances × " + std::to_string(sizeof(VsOut)) +
-                      " bytes of " + typeName<VsOut>() + ")");
+                      " bytes of " + detail::shaderName(vs) + "'s output)");
     draw_stats_ = {};
     const uint32_t draw_index = draw_count_++;
     const RenderProgress::DrawScope progress_scope(progress_);
-    TraceDraw* trace_draw = trace_ ? &beginTraceDraw<VS, GS, PS>(draw_index, p) : nullptr;
+    TraceDraw* trace_draw = trace_ ? &beginTraceDraw(vs, gs, ps, draw_index, p) : nullptr;
     const bool trace_geometry = trace_draw && trace_->options().geometry;
     auto finish = [&](const PipelineStatistics& s) {
         draw_stats_ = s;
@@ -109,10 +143,11 @@ void Context::executeDraw(const VS& vs, const GS& gs, const PS& ps, const DrawCa
 
     // ---- VS ----
     auto& vs_out = scratch<std::vector<VsOut>>();
-    runVertexShader(vs, program, vertex_buffers_, assembled, call, pool_, vs_out);
+    runVertexShader(vs, program, vertex_buffers_, assembled, call, *pool_, vs_out);
     if (trace_geometry)
         detail::traceVertices<VsIn>(*trace_draw, trace_->options().maxGeometryRecords, program,
-                                    vertex_buffers_, assembled, call, vs_out);
+                                    vertex_buffers_, assembled, call, vs_out,
+                                    uint32_t(vs_input.bytes / sizeof(float)), detail::vertexShaderFloats(vs));
     if (last_stage == Stage::VertexShader || (!kHasGs && last_stage == Stage::GeometryShader))
         return finish(stats);
 
@@ -123,7 +158,7 @@ void Context::executeDraw(const VS& vs, const GS& gs, const PS& ps, const DrawCa
     auto& chunks = scratch<std::vector<detail::Chunk<Vertex>>>();
     const uint32_t chunk_count = runGeometryStages(
         gs, vs_out, assembled, total_prims, p, last_stage != Stage::GeometryShader, trace_geometry, chunks);
-    gatherChunks<GS>(chunks, chunk_count, stats, trace_draw);
+    gatherChunks(gs, chunks, chunk_count, stats, trace_draw);
     if constexpr (!kHasGs) stats.gsInvocations = stats.gsPrimitives = 0;
 
     // ---- rasterize → PS → OM, in parallel over screen tiles ----
@@ -143,14 +178,14 @@ uint32_t Context::runGeometryStages(
     const uint32_t per_instance = uint32_t(assembled.fetch.size());
     const uint32_t prims_per_instance = assembled.primitiveCount();
     const uint32_t chunk_count =
-        uint32_t(std::clamp<uint64_t>((total_prims + 1023) / 1024, 1, uint64_t(pool_.size()) * 8));
+        uint32_t(std::clamp<uint64_t>((total_prims + 1023) / 1024, 1, uint64_t(pool_->size()) * 8));
     const uint64_t chunk_size = (total_prims + chunk_count - 1) / chunk_count;
     if (chunks.size() < chunk_count) chunks.resize(chunk_count);
     const int k_in = int(assembled.kind);
     // The reference pipeline takes no shortcut: billboards stay two triangles there.
     [[maybe_unused]] const bool rectangles =
         !options_.reference && !options_.plain && rasterizer_.fillMode == FillMode::Solid;
-    pool_.parallelFor(chunk_count, [&](uint32_t c, unsigned) {
+    pool_->parallelFor(chunk_count, [&](uint32_t c, unsigned) {
         detail::Chunk<Vertex>& chunk = chunks[c];
         chunk.reset(p.grid.count());
         chunk.tracing = trace_geometry;
@@ -187,7 +222,7 @@ uint32_t Context::runGeometryStages(
                         const float* f = asFloats(stream->vertex(i));
                         chunk.traceGs.push_back(
                             TraceGsVertex{uint32_t(prim), stream->startsStrip(i),
-                                          std::vector<float>(f, f + kVertexFloats<Vertex>)});
+                                          std::vector<float>(f, f + detail::geometryShaderFloats(gs))});
                     }
                 }
             } else {
@@ -199,14 +234,13 @@ uint32_t Context::runGeometryStages(
 }
 
 template <class GS, class V>
-void Context::gatherChunks(std::vector<detail::Chunk<V>>& chunks, uint32_t chunk_count,
+void Context::gatherChunks(const GS& gs, std::vector<detail::Chunk<V>>& chunks, uint32_t chunk_count,
                            PipelineStatistics& stats, TraceDraw* trace_draw) {
-    using Stream = typename detail::LastGeometryStage<GS, V>::Stream;
     for (uint32_t c = 0; c < chunk_count; ++c) {
         detail::Chunk<V>& chunk = chunks[c];
         RASTER_REQUIRE(chunk.gsOverflow == 0, ShaderError,
-                       "geometry shader " + typeName<GS>() + " appended " + std::to_string(chunk.gsOverflow) +
-                           " vertices past its maxvertexcount of " + std::to_string(Stream::kMaxVertices) +
+                       "geometry shader " + detail::shaderName(gs) + " appended " + std::to_string(chunk.gsOverflow) +
+                           " vertices past its maxvertexcount of " + std::to_string(detail::maxVertexCount(gs)) +
                            " for primitive " + std::to_string(chunk.gsOverflowPrimitive) +
                            "; the draw was not rasterised");
         stats += chunk.stats;
@@ -271,26 +305,27 @@ void Context::rasterizeDraw(const PS& ps, std::vector<detail::Chunk<V>>& chunks,
 }
 
 template <class VS, class GS, class PS>
-TraceDraw& Context::beginTraceDraw(uint32_t draw_index, const DrawPlan& plan) {
-    using VsIn = VertexShaderInput<VS>;
+TraceDraw& Context::beginTraceDraw(const VS& vs, const GS& gs, const PS& ps, uint32_t draw_index,
+                                   const DrawPlan& plan) {
     using VsOut = VertexShaderOutput<VS>;
     TraceDraw& d = trace_->beginDraw(plan.width, plan.height);
     d.draw = draw_index;
-    d.vertexShader = typeName<VS>();
-    d.pixelShader = typeName<PS>();
+    d.vertexShader = detail::shaderName(vs);
+    d.pixelShader = detail::shaderName(ps);
     d.topology = topology_;
     d.blend = blend_;
     d.depthStencil = depth_stencil_;
-    for (const ShaderInputField& f : VsIn::inputSignature())
+    const detail::VertexInputDescription input = detail::vertexInputOf(vs);
+    for (const ShaderInputField& f : input.signature)
         d.inputFields.push_back(
             {std::string(f.semanticName) + (f.semanticIndex ? std::to_string(f.semanticIndex) : ""),
              f.offset / uint32_t(sizeof(float)), f.components});
-    d.vsFloats = kVertexFloats<VsOut>;
+    d.vsFloats = detail::vertexShaderFloats(vs);
     d.vsPosition = uint32_t(offsetof(VsOut, position) / sizeof(float));
     if constexpr (!std::is_same_v<GS, NoGeometryShader>) {
         using GsOut = GeometryShaderOutput<GS>;
-        d.geometryShader = typeName<GS>();
-        d.gsFloats = kVertexFloats<GsOut>;
+        d.geometryShader = detail::shaderName(gs);
+        d.gsFloats = detail::geometryShaderFloats(gs);
         d.gsPosition = uint32_t(offsetof(GsOut, position) / sizeof(float));
     }
     return d;
@@ -324,11 +359,11 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
     struct alignas(64) ThreadStatistics {
         PipelineStatistics s;
     };
-    std::vector<ThreadStatistics> per_thread(pool_.size());
+    std::vector<ThreadStatistics> per_thread(pool_->size());
     [[maybe_unused]] std::vector<std::vector<TraceFragment>> traced_tiles(tracer.active ? plan.grid.count() : 0);
     RenderProgress* const progress = progress_;
     if (progress) progress->beginTiles(plan.grid.count());
-    pool_.parallelFor(plan.grid.count(), [&](uint32_t index, unsigned thread) {
+    pool_->parallelFor(plan.grid.count(), [&](uint32_t index, unsigned thread) {
         const detail::ReferenceModeGuard reference(std::is_same_v<Real, double>);
         TileFill tile(draw, index, plan.grid.tileRect(index), per_thread[thread].s, tracer);
         fillTile(tile);

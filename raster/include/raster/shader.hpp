@@ -85,6 +85,9 @@ public:
 
     int size() const { return count_; }
     int overflow() const { return overflow_; }
+    // Counts n vertices appended past the limit elsewhere (the teaching pipeline's stream reports
+    // what the lab's own stream dropped).
+    void addOverflow(int n) { overflow_ += n; }
     const V& vertex(int i) const { return vertices_[i]; }
     // True if a new strip starts at vertex i.
     bool startsStrip(int i) const { return i == 0 || cut_[i]; }

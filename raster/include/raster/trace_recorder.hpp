@@ -90,7 +90,7 @@ struct FragmentTracer {
 template <class VsIn, class VsOut>
 void traceVertices(TraceDraw& d, uint32_t cap, std::span<const InputFetch> program,
                    std::span<const VertexBuffer* const> slots, const AssembledDraw& draw, const DrawCall& call,
-                   const std::vector<VsOut>& out) {
+                   const std::vector<VsOut>& out, uint32_t input_floats, uint32_t output_floats) {
     const uint32_t per_instance = uint32_t(draw.fetch.size());
     d.verticesTotal = out.size();
     for (size_t i = 0; i < out.size() && i < cap; ++i) {
@@ -101,10 +101,10 @@ void traceVertices(TraceDraw& d, uint32_t cap, std::span<const InputFetch> progr
         TraceVertex v;
         v.instance = instance;
         v.index = draw.fetch[local];
-        v.input.resize(sizeof(VsIn) / sizeof(float));
+        v.input.resize(input_floats);  // the shader's input struct's (≤ sizeof(VsIn))
         std::memcpy(v.input.data(), &in, v.input.size() * sizeof(float));
         const float* o = asFloats(out[i]);
-        v.output.assign(o, o + kVertexFloats<VsOut>);
+        v.output.assign(o, o + output_floats);  // ≤ kVertexFloats<VsOut>
         d.vertices.push_back(std::move(v));
     }
 }

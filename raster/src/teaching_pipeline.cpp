@@ -1,0 +1,27 @@
+// The teaching pipeline's draws (raster/teaching_pipeline.hpp), compiled once: the template pipeline
+// instantiated for the function-pointer shaders, through the generic depth and colour policies only
+// (the same bits as the specialised ones; 6 instantiations of the tile loop per geometry-shader kind).
+// These instantiations of Context::execute exist in this file only: nothing else draws with the
+// Teaching* shader types directly (lab files reach them through executeTeaching).
+#define RASTER_DRAWS_GENERIC_ONLY 1
+#include "raster/pipeline_impl.hpp"
+#include "raster/teaching_pipeline.hpp"
+
+namespace raster {
+
+void Context::executeTeaching(const TeachingVertexShader& vs, const TeachingPixelShader& ps,
+                              const DrawCall& call) {
+    execute(vs, NoGeometryShader{}, ps, call);
+}
+
+void Context::executeTeaching(const TeachingVertexShader& vs, const TeachingPointGeometryShader& gs,
+                              const TeachingPixelShader& ps, const DrawCall& call) {
+    execute(vs, gs, ps, call);
+}
+
+void Context::executeTeaching(const TeachingVertexShader& vs, const TeachingTriangleGeometryShader& gs,
+                              const TeachingPixelShader& ps, const DrawCall& call) {
+    execute(vs, gs, ps, call);
+}
+
+}  // namespace raster
