@@ -40,8 +40,8 @@ namespace raster {
 namespace detail {
 // Draws made in this translation unit take the generic depth and colour policies only (the same
 // bits): 6 instantiations of the tile loop per shader set instead of 16, so a file that draws
-// compiles in a fraction of the time. labs/CMakeLists.txt defines RASTER_DRAWS_GENERIC_ONLY for the
-// labs and their solutions (labs/README.md: the lab loop). A constant per translation unit (internal
+// compiles in a fraction of the time. src/teaching_pipeline.cpp (the pipeline labs draw through) and
+// the suites of the stages before the pixels define it. A constant per translation unit (internal
 // linkage); the draws it changes are of the unit's own shaders, which are local to it.
 #ifdef RASTER_DRAWS_GENERIC_ONLY
 constexpr bool kDrawsGenericOnly = true;

@@ -4,7 +4,7 @@
 // (no locks: a pixel belongs to one tile, so the per-pixel counts are written by one thread only).
 // Draws through the generic policies always take FragmentTracer, recording or not (`active`): one
 // instantiation of the tile loop serves traced and untraced generic draws alike, which halves what
-// a file that draws through the generic policies only (a lab) compiles. Its hooks then cost one
+// a file that draws through the generic policies only (the teaching pipeline) compiles. Its hooks then cost one
 // predictable branch per fragment, on the path that reads the state per fragment anyway.
 #pragma once
 

@@ -7,7 +7,7 @@
 // the lecture's additive blend into one RGBA8 target: 10 pairs). Anything else takes the generic
 // policies, which read the state per fragment (genericDepthPolicy, genericColorPolicy): the same
 // bits, 6 pairs, compiled once per shader set and shared with traced draws, the plain path and
-// files that draw through the generic policies only (labs). The reference pipeline always takes
+// files that draw through the generic policies only (the teaching pipeline that labs draw through). The reference pipeline always takes
 // the generic policies, in double.
 #pragma once
 
