@@ -1,0 +1,383 @@
+#include "grade/diagnose.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <optional>
+#include <utility>
+
+namespace raster::grade {
+namespace {
+
+template <class... Args>
+std::string fmt(const char* format, Args... args) {
+    char buffer[512];
+    std::snprintf(buffer, sizeof buffer, format, args...);
+    return buffer;
+}
+
+std::string colour(const glm::vec4& c) {
+    return fmt("(%.3f, %.3f, %.3f, %.3f)", c.x, c.y, c.z, c.w);
+}
+
+// Equal as recorded, NaN equal to NaN (an unshaded fragment's output is NaN on both sides).
+bool same(float a, float b) {
+    return a == b || (std::isnan(a) && std::isnan(b));
+}
+bool same(const glm::vec4& a, const glm::vec4& b) {
+    return same(a.x, b.x) && same(a.y, b.y) && same(a.z, b.z) && same(a.w, b.w);
+}
+
+const TraceDraw* findDraw(const Trace& trace, uint32_t draw) {
+    for (const TraceDraw& d : trace.draws())
+        if (d.draw == draw) return &d;
+    return nullptr;
+}
+
+struct Found {
+    DiagnosisStage stage;
+    std::string text;
+};
+
+std::string blendName(Blend b) {
+    return "Blend::" + std::string(name(b));
+}
+std::string opName(BlendOp o) {
+    return "BlendOp::" + std::string(name(o));
+}
+std::string funcName(ComparisonFunc f) {
+    return "ComparisonFunc::" + std::string(name(f));
+}
+const char* onOff(bool on) {
+    return on ? "on" : "off";
+}
+
+void addIfDifferent(std::vector<std::string>& out, const std::string& prefix, const char* what,
+                    const std::string& yours, const std::string& theirs) {
+    if (yours != theirs)
+        out.push_back(prefix + "your " + what + " is " + yours + " where the solution's is " + theirs);
+}
+
+// ---- Geometry of one input primitive ----
+
+// Triangles a geometry shader's output strips make for input primitive p: n − 2 per strip of n.
+std::pair<size_t, size_t> gsOutput(const TraceDraw& d, uint32_t p) {
+    size_t vertices = 0, triangles = 0, strip = 0;
+    for (const TraceGsVertex& v : d.gsVertices) {
+        if (v.primitive != p) continue;
+        if (v.startsStrip) triangles += strip >= 3 ? strip - 2 : 0, strip = 0;
+        ++vertices, ++strip;
+    }
+    triangles += strip >= 3 ? strip - 2 : 0;
+    return {vertices, triangles};
+}
+
+std::vector<const TracePrimitive*> primitivesOf(const TraceDraw& d, uint32_t p) {
+    std::vector<const TracePrimitive*> out;
+    for (const TracePrimitive& prim : d.primitives)
+        if (prim.primitive == p) out.push_back(&prim);
+    return out;
+}
+
+std::optional<Found> gsCountDifference(const TraceDraw& yours, const TraceDraw& theirs, uint32_t p) {
+    if (yours.geometryShader.empty() || theirs.geometryShader.empty()) return std::nullopt;
+    const auto [your_vertices, your_triangles] = gsOutput(yours, p);
+    const auto [their_vertices, their_triangles] = gsOutput(theirs, p);
+    if (your_vertices == their_vertices && your_triangles == their_triangles) return std::nullopt;
+    return Found{DiagnosisStage::GeometryShader,
+                 fmt("the geometry shader emitted %zu triangle%s (%zu vertices) for this input primitive "
+                     "(solution: %zu triangle%s, %zu vertices)",
+                     your_triangles, your_triangles == 1 ? "" : "s", your_vertices, their_triangles,
+                     their_triangles == 1 ? "" : "s", their_vertices)};
+}
+
+// Clip-space position to pixels, for the whole-target viewport every scene sets (beginSceneFrame).
+glm::vec2 toPixels(const glm::vec4& clip, const Trace& trace) {
+    return {(clip.x / clip.w * 0.5f + 0.5f) * float(trace.width()),
+            (0.5f - clip.y / clip.w * 0.5f) * float(trace.height())};
+}
+
+// The geometry shader's output positions for input primitive p, vertex by vertex.
+std::optional<Found> gsPositionDifference(const Trace& yours, const TraceDraw& a, const TraceDraw& b,
+                                          uint32_t p) {
+    if (a.geometryShader.empty() || a.gsFloats < 4 || b.gsFloats < 4) return std::nullopt;
+    std::vector<glm::vec4> mine, theirs;
+    for (const TraceGsVertex& v : a.gsVertices)
+        if (v.primitive == p && v.values.size() >= a.gsPosition + 4)
+            mine.push_back(glm::vec4(v.values[a.gsPosition], v.values[a.gsPosition + 1],
+                                     v.values[a.gsPosition + 2], v.values[a.gsPosition + 3]));
+    for (const TraceGsVertex& v : b.gsVertices)
+        if (v.primitive == p && v.values.size() >= b.gsPosition + 4)
+            theirs.push_back(glm::vec4(v.values[b.gsPosition], v.values[b.gsPosition + 1],
+                                       v.values[b.gsPosition + 2], v.values[b.gsPosition + 3]));
+    for (size_t k = 0; k < std::min(mine.size(), theirs.size()); ++k) {
+        if (same(mine[k], theirs[k])) continue;
+        const glm::vec2 s = toPixels(mine[k], yours), t = toPixels(theirs[k], yours);
+        std::string text =
+            fmt("the geometry shader output vertex %zu's SV_Position is (%.4g, %.4g, %.4g, %.4g) where the "
+                "solution's is (%.4g, %.4g, %.4g, %.4g): on screen (%.2f, %.2f) against (%.2f, %.2f)",
+                k, mine[k].x, mine[k].y, mine[k].z, mine[k].w, theirs[k].x, theirs[k].y, theirs[k].z,
+                theirs[k].w, s.x, s.y, t.x, t.y);
+        if (s.x != t.x) text += fmt("; x differs by %+.2f pixel", s.x - t.x);
+        if (s.y != t.y) text += fmt("; y differs by %+.2f pixel", s.y - t.y);
+        if (mine[k].w != theirs[k].w)
+            text += fmt(
+                "; w is %.4g where the solution's is %.4g: the rasterizer divides by w itself (was an offset "
+                "added after a division by w?)",
+                mine[k].w, theirs[k].w);
+        return Found{DiagnosisStage::GeometryShader, text};
+    }
+    return std::nullopt;
+}
+
+std::optional<Found> positionDifference(const TraceDraw& yours, const TraceDraw& theirs, uint32_t p) {
+    const bool gs = !yours.geometryShader.empty();
+    const DiagnosisStage stage = gs ? DiagnosisStage::GeometryShader : DiagnosisStage::VertexShader;
+    const char* shader = gs ? "geometry shader" : "vertex shader";
+    const std::vector<const TracePrimitive*> a = primitivesOf(yours, p), b = primitivesOf(theirs, p);
+    for (size_t i = 0; i < std::min(a.size(), b.size()); ++i) {
+        if (a[i]->vertexCount != b[i]->vertexCount) break;
+        for (int k = 0; k < a[i]->vertexCount; ++k) {
+            const glm::vec4 s = a[i]->screen[k], t = b[i]->screen[k];
+            if (same(s, t)) continue;
+            std::string text =
+                fmt("%s output, primitive %zu after setup, vertex %d: at (%.2f, %.2f) depth %.4g where "
+                    "the solution's is at (%.2f, %.2f) depth %.4g",
+                    shader, i, k, s.x, s.y, s.z, t.x, t.y, t.z);
+            if (s.x != t.x) text += fmt("; x differs by %+.2f pixel", s.x - t.x);
+            if (s.y != t.y) text += fmt("; y differs by %+.2f pixel", s.y - t.y);
+            if (s.w != t.w) text += fmt("; w differs (%.4g against %.4g)", s.w, t.w);
+            return Found{stage, text};
+        }
+    }
+    if (a.size() != b.size())
+        return Found{
+            DiagnosisStage::Rasterizer,
+            fmt("this input primitive became %zu primitive%s after clipping and setup (solution: %zu)",
+                a.size(), a.size() == 1 ? "" : "s", b.size())};
+    for (size_t i = 0; i < a.size(); ++i)
+        if (a[i]->fate != b[i]->fate)
+            return Found{DiagnosisStage::Rasterizer, fmt("primitive %zu after setup was %s (solution: %s)", i,
+                                                         toString(a[i]->fate), toString(b[i]->fate))};
+    return std::nullopt;
+}
+
+std::optional<Found> attributeDifference(const TraceDraw& yours, const TraceDraw& theirs, uint32_t p) {
+    if (yours.geometryShader.empty() || yours.gsFloats != theirs.gsFloats) return std::nullopt;
+    std::vector<const TraceGsVertex*> a, b;
+    for (const TraceGsVertex& v : yours.gsVertices)
+        if (v.primitive == p) a.push_back(&v);
+    for (const TraceGsVertex& v : theirs.gsVertices)
+        if (v.primitive == p) b.push_back(&v);
+    for (size_t i = 0; i < std::min(a.size(), b.size()); ++i)
+        for (size_t c = 0; c < std::min(a[i]->values.size(), b[i]->values.size()); ++c)
+            if (!same(a[i]->values[c], b[i]->values[c]))
+                return Found{
+                    DiagnosisStage::GeometryShader,
+                    fmt("the geometry shader's output vertex %zu differs in float %zu of its output: %.4g "
+                        "where the solution's is %.4g",
+                        i, c, a[i]->values[c], b[i]->values[c])};
+    return std::nullopt;
+}
+
+std::optional<Found> geometryDifference(const Trace& yours, const Trace& theirs, uint32_t draw, uint32_t p) {
+    const TraceDraw* a = findDraw(yours, draw);
+    const TraceDraw* b = findDraw(theirs, draw);
+    if (!a || !b)
+        return Found{DiagnosisStage::Draw,
+                     fmt("draw %u is in %s frame only (yours has %zu draws, the solution's %zu)", draw,
+                         a ? "your" : "the solution's", yours.draws().size(), theirs.draws().size())};
+    if (a->geometryShader.empty() != b->geometryShader.empty())
+        return Found{DiagnosisStage::Draw, std::string("your draw ") +
+                                               (a->geometryShader.empty() ? "has no" : "has a") +
+                                               " geometry shader, the solution's " +
+                                               (b->geometryShader.empty() ? "has none" : "has one")};
+    if (a->topology != b->topology)
+        return Found{DiagnosisStage::Draw, "the draw's primitive topology differs"};
+    if (auto found = gsCountDifference(*a, *b, p)) return found;
+    if (auto found = gsPositionDifference(yours, *a, *b, p)) return found;
+    if (auto found = positionDifference(*a, *b, p)) return found;
+    return attributeDifference(*a, *b, p);
+}
+
+// ---- One fragment against the solution's ----
+
+bool depthPassed(const TraceFragment& f) {
+    return f.fate != FragmentFate::EarlyDepthFailed && f.fate != FragmentFate::LateDepthFailed;
+}
+
+std::optional<Found> depthDifference(const TraceFragment& a, const TraceFragment& b) {
+    if (depthPassed(a) != depthPassed(b)) {
+        std::string text =
+            fmt("your fragment %s the depth test, the solution's %s (%.4g against a stored %.4g; "
+                "the solution's %.4g against %.4g)",
+                depthPassed(a) ? "passed" : "failed", depthPassed(b) ? "passed" : "failed", a.depth,
+                a.depthBefore, b.depth, b.depthBefore);
+        if (!same(a.depthBefore, b.depthBefore))
+            text += a.depthBefore < b.depthBefore
+                        ? ": the stored depth is nearer in yours: is depth write on for "
+                          "an earlier fragment?"
+                        : ": the stored depth is farther in yours: is depth write off?";
+        return Found{DiagnosisStage::DepthTest, text};
+    }
+    if (!same(a.depthAfter, b.depthAfter)) {
+        const bool you_wrote = !same(a.depthAfter, a.depthBefore);
+        return Found{
+            DiagnosisStage::DepthTest,
+            you_wrote
+                ? fmt("your fragment wrote its depth %.4g over a stored %.4g, the solution's left %.4g: "
+                      "is depth write on?",
+                      a.depth, a.depthBefore, b.depthAfter)
+                : fmt("your fragment left the stored depth %.4g, the solution's wrote its depth %.4g: is "
+                      "depth write off?",
+                      a.depthAfter, b.depthAfter)};
+    }
+    return std::nullopt;
+}
+
+std::optional<Found> fragmentDifference(const TraceFragment& a, const TraceFragment& b,
+                                        const std::vector<std::string>& blend_differences) {
+    if (!same(a.colorBefore, b.colorBefore))
+        return Found{DiagnosisStage::Blend, "the colour before this fragment is " + colour(a.colorBefore) +
+                                                " where the solution's is " + colour(b.colorBefore) +
+                                                ": the clear or an earlier draw left another colour"};
+    if (auto found = depthDifference(a, b)) return found;
+    const bool a_discarded = a.fate == FragmentFate::Discarded,
+               b_discarded = b.fate == FragmentFate::Discarded;
+    if (a_discarded != b_discarded)
+        return Found{DiagnosisStage::PixelShader,
+                     std::string("your pixel shader ") + (a_discarded ? "discarded" : "kept") +
+                         " the fragment, the solution's " + (b_discarded ? "discarded it" : "kept it")};
+    if (!same(a.shaderOutput, b.shaderOutput))
+        return Found{DiagnosisStage::PixelShader, "your pixel shader returned " + colour(a.shaderOutput) +
+                                                      ", the solution's " + colour(b.shaderOutput)};
+    if (!same(a.colorAfter, b.colorAfter)) {
+        std::string text = "the output merger made " + colour(a.shaderOutput) + " over " +
+                           colour(a.colorBefore) + " gives " + colour(a.colorAfter) + " in yours, " +
+                           colour(b.colorAfter) + " in the solution's";
+        if (!blend_differences.empty()) text = blend_differences.front();
+        return Found{DiagnosisStage::Blend, text};
+    }
+    return std::nullopt;
+}
+
+using Key = std::pair<uint32_t, uint32_t>;  // (draw, primitive)
+
+std::map<Key, std::vector<TraceFragment>> byKey(const std::vector<TraceFragment>& fragments) {
+    std::map<Key, std::vector<TraceFragment>> out;
+    for (const TraceFragment& f : fragments) out[{f.draw, f.primitive}].push_back(f);
+    return out;
+}
+
+// The first difference at one (draw, primitive): geometry, then coverage, then fragment by fragment.
+std::optional<Found> keyDifference(const Trace& yours, const Trace& theirs, Key key,
+                                   const std::vector<TraceFragment>& a, const std::vector<TraceFragment>& b) {
+    if (auto found = geometryDifference(yours, theirs, key.first, key.second)) return found;
+    if (a.size() != b.size())
+        return Found{
+            DiagnosisStage::Rasterizer,
+            fmt("your primitive covers this pixel %zu time%s, the solution's %zu (same positions after "
+                "setup): compare the rasterizer state (culling, scissor)",
+                a.size(), a.size() == 1 ? "" : "s", b.size())};
+    std::vector<std::string> blend_differences;
+    for (const std::string& line : drawStateDifferences(yours, theirs, key.first))
+        if (line.find(" blend: ") != std::string::npos)
+            blend_differences.push_back(line.substr(line.find(": ") + 2));
+    for (size_t i = 0; i < a.size(); ++i)
+        if (auto found = fragmentDifference(a[i], b[i], blend_differences)) return found;
+    return std::nullopt;
+}
+
+}  // namespace
+
+const char* stageName(DiagnosisStage stage) {
+    switch (stage) {
+        case DiagnosisStage::None:
+            return "none";
+        case DiagnosisStage::Draw:
+            return "draw";
+        case DiagnosisStage::VertexShader:
+            return "vertex shader";
+        case DiagnosisStage::GeometryShader:
+            return "geometry shader";
+        case DiagnosisStage::Rasterizer:
+            return "rasterizer";
+        case DiagnosisStage::DepthTest:
+            return "depth test";
+        case DiagnosisStage::PixelShader:
+            return "pixel shader";
+        case DiagnosisStage::Blend:
+            return "blend";
+    }
+    return "?";
+}
+
+std::vector<std::string> drawStateDifferences(const Trace& submission, const Trace& solution, uint32_t draw) {
+    const TraceDraw* a = findDraw(submission, draw);
+    const TraceDraw* b = findDraw(solution, draw);
+    std::vector<std::string> out;
+    if (!a || !b) return out;
+    const RenderTargetBlendDesc &x = a->blend.target(0), &y = b->blend.target(0);
+    const std::string blend = fmt("draw %u blend: ", draw);
+    addIfDifferent(out, blend, "blending", onOff(x.blendEnable), onOff(y.blendEnable));
+    if (x.blendEnable || y.blendEnable) {
+        addIfDifferent(out, blend, "source factor", blendName(x.srcBlend), blendName(y.srcBlend));
+        addIfDifferent(out, blend, "destination factor", blendName(x.destBlend), blendName(y.destBlend));
+        addIfDifferent(out, blend, "operation", opName(x.blendOp), opName(y.blendOp));
+        addIfDifferent(out, blend, "alpha source factor", blendName(x.srcBlendAlpha),
+                       blendName(y.srcBlendAlpha));
+        addIfDifferent(out, blend, "alpha destination factor", blendName(x.destBlendAlpha),
+                       blendName(y.destBlendAlpha));
+        addIfDifferent(out, blend, "alpha operation", opName(x.blendOpAlpha), opName(y.blendOpAlpha));
+    }
+    addIfDifferent(out, blend, "write mask", fmt("0x%X", x.renderTargetWriteMask),
+                   fmt("0x%X", y.renderTargetWriteMask));
+    const DepthStencilState &p = a->depthStencil, &q = b->depthStencil;
+    const std::string depth = fmt("draw %u depth-stencil: ", draw);
+    addIfDifferent(out, depth, "depth test", onOff(p.depthEnable), onOff(q.depthEnable));
+    if (p.depthEnable || q.depthEnable) {
+        addIfDifferent(out, depth, "depth write", onOff(p.depthWriteMask), onOff(q.depthWriteMask));
+        addIfDifferent(out, depth, "depth function", funcName(p.depthFunc), funcName(q.depthFunc));
+    }
+    return out;
+}
+
+Diagnosis diagnosePixel(const Trace& submission, const Trace& solution, int32_t x, int32_t y) {
+    Diagnosis d;
+    const auto yours = byKey(submission.pixelHistory(x, y));
+    const auto theirs = byKey(solution.pixelHistory(x, y));
+    std::vector<Key> keys;
+    for (const auto& [key, fragments] : yours) keys.push_back(key);
+    for (const auto& [key, fragments] : theirs) keys.push_back(key);
+    std::sort(keys.begin(), keys.end());
+    keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+    static const std::vector<TraceFragment> kNone;
+    for (const Key& key : keys) {
+        const auto a = yours.find(key), b = theirs.find(key);
+        const std::optional<Found> found =
+            keyDifference(submission, solution, key, a == yours.end() ? kNone : a->second,
+                          b == theirs.end() ? kNone : b->second);
+        if (!found) continue;
+        d.stage = found->stage;
+        d.headline =
+            fmt("pixel (%d, %d), draw %u, primitive %u: ", x, y, key.first, key.second) + found->text;
+        for (const std::string& line : drawStateDifferences(submission, solution, key.first))
+            d.details.push_back(line);
+        break;
+    }
+    if (d.stage == DiagnosisStage::None) {
+        d.headline =
+            fmt("pixel (%d, %d): its history is the same in your render and the solution's (%zu fragments)",
+                x, y, submission.pixelHistory(x, y).size());
+        const size_t draws = std::max(submission.draws().size(), solution.draws().size());
+        for (uint32_t draw = 0; draw < draws; ++draw)
+            for (const std::string& line : drawStateDifferences(submission, solution, draw))
+                d.details.push_back(line);
+    }
+    d.details.push_back(fmt("fragments at this pixel: %zu in yours, %zu in the solution's",
+                            submission.pixelHistory(x, y).size(), solution.pixelHistory(x, y).size()));
+    return d;
+}
+
+}  // namespace raster::grade

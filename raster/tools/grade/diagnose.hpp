@@ -1,0 +1,64 @@
+// The diagnosis of raster grade (issue 32): given one pixel's history in the submission's render and in
+// the solution's, name the first pipeline stage where they part, in words a student can act on.
+//
+//   const raster::grade::Diagnosis d = raster::grade::diagnosePixel(submission_trace, solution_trace, x, y);
+//   d.stage     DiagnosisStage::Blend
+//   d.headline  "pixel (212, 96), draw 1, primitive 417: blend: your destination factor is INV_SRC_ALPHA
+//               where the solution's is ONE"
+//   d.details   the draw's state differences, the two fragments' figures
+//
+// Both traces must have recorded the pixel's fragments (TraceOptions::pixels) and the geometry
+// (TraceOptions::geometry, with enough maxGeometryRecords for the draw's primitives).
+//
+// How the histories are aligned: fragments by (draw, primitive), the key the output merger orders them
+// by, in that order. For each key, in order, the stages are compared from first to last, and the first
+// difference found is the diagnosis:
+//   1. the draw itself: a draw the other frame lacks; shaders or topology (DiagnosisStage::Draw)
+//   2. geometry of that input primitive: the geometry shader's vertex count (as triangles of its strips)
+//      and output positions, else the vertex shader's output positions, as pixels after setup
+//      (GeometryShader, VertexShader); the primitives set up from it (Rasterizer: a fragment one side
+//      has and the other not, with the same geometry)
+//   3. the fragment's depth test and depth write (DepthTest)
+//   4. the pixel shader's output (PixelShader)
+//   5. the colour after the output merger, given the same shader output and colour before (Blend)
+// Positions are compared exactly (the solution against itself is bit-exact at any thread count): a
+// different order of a strip's corners reads as a geometry difference, but then the images agree and
+// no diagnosis is asked for. Draws are compared as a whole too: blend and depth-stencil state
+// differences (TraceDraw records no rasterizer state) are listed in `details` whatever the stage.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "raster/trace.hpp"
+
+namespace raster::grade {
+
+enum class DiagnosisStage {
+    None,
+    Draw,
+    VertexShader,
+    GeometryShader,
+    Rasterizer,
+    DepthTest,
+    PixelShader,
+    Blend
+};
+// "none", "draw", "vertex shader", "geometry shader", "rasterizer", "depth test", "pixel shader", "blend".
+const char* stageName(DiagnosisStage stage);
+
+struct Diagnosis {
+    DiagnosisStage stage = DiagnosisStage::None;
+    std::string headline;              // one line: where, which stage, yours against the solution's
+    std::vector<std::string> details;  // the state differences of the draws involved, then figures
+};
+
+Diagnosis diagnosePixel(const Trace& submission, const Trace& solution, int32_t x, int32_t y);
+
+// The blend and depth-stencil state differences of draw `draw` in both traces, one line each, e.g.
+// "draw 1 blend: your destination factor is INV_SRC_ALPHA where the solution's is ONE"; empty when equal
+// or when either trace lacks the draw.
+std::vector<std::string> drawStateDifferences(const Trace& submission, const Trace& solution, uint32_t draw);
+
+}  // namespace raster::grade
