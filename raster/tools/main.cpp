@@ -60,7 +60,7 @@ int main(int argc, char** argv) {
     CLI::App app("raster: a software rasterizer emulating the Direct3D 11 pipeline", "raster");
     app.require_subcommand(0, 1);
     const std::vector<raster::tools::Command> commands = {
-        raster::tools::addBench(app), raster::tools::addMicrobench(app), raster::tools::addRender(app),
+        raster::tools::addBench(app), raster::tools::addGrade(app), raster::tools::addMicrobench(app), raster::tools::addRender(app),
         raster::tools::addTrace(app), raster::tools::addView(app)};
     app.add_subcommand("help", "this text");
     app.footer(

@@ -1,0 +1,383 @@
+#include "grade/grader.hpp"
+
+#include <pwd.h>
+#include <sys/prctl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <thread>
+
+#include "grade/diagnose.hpp"
+#include "grade/trace_json.hpp"
+#include "raster/check.hpp"
+#include "raster/pipeline.hpp"
+#include "raster/trace.hpp"
+
+namespace raster::grade {
+namespace {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+std::string readText(const std::string& path, size_t max_bytes) {
+    std::ifstream in(path, std::ios::binary);
+    RASTER_REQUIRE(in, BadFile, "cannot read '" + path + "'");
+    std::string text(max_bytes, '\0');
+    in.read(text.data(), std::streamsize(max_bytes));
+    text.resize(size_t(in.gcount()));
+    return text;
+}
+
+// The last `count` lines of a child's output, for an explanation.
+std::string tail(const std::string& text, size_t count) {
+    std::vector<std::string> lines;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) lines.push_back(line);
+    std::string out;
+    for (size_t i = lines.size() > count ? lines.size() - count : 0; i < lines.size(); ++i)
+        out += lines[i] + "\n";
+    return out;
+}
+
+// What ended a sandboxed run that did not succeed, as the start of a reason.
+std::string failureReason(const SandboxResult& r) {
+    switch (r.outcome) {
+        case SandboxOutcome::Signaled:
+            return "crashed: " + r.description;
+        case SandboxOutcome::WallTimeLimit:
+        case SandboxOutcome::CpuTimeLimit:
+            return "timed out: " + r.description;
+        case SandboxOutcome::MemoryLimit:
+            return "ran out of memory: " + r.description;
+        case SandboxOutcome::OutputSizeLimit:
+            return "wrote too much: " + r.description;
+        case SandboxOutcome::ProcessLimit:
+            return "too many processes: " + r.description;
+        case SandboxOutcome::StartFailed:
+            return "could not start: " + r.description;
+        case SandboxOutcome::Exited:
+            break;
+    }
+    return "failed: " + r.description;
+}
+
+// The user whose tasks RLIMIT_NPROC counts in the child: the one it drops to when the grader is root.
+uid_t childUid(const SandboxCommand& command) {
+    if (geteuid() != 0 || !command.dropToUser) return getuid();
+    const passwd* user = getpwnam(command.dropToUser->c_str());
+    return user ? user->pw_uid : getuid();
+}
+
+SandboxResult runLimited(std::vector<std::string> argv, const std::string& dir, SandboxLimits limits) {
+    SandboxCommand command;
+    command.argv = std::move(argv);
+    command.workingDirectory = command.scratchDirectory = dir;
+    if (limits.processes > 0) limits.processes += userTaskCount(childUid(command));
+    command.limits = limits;
+    return runSandboxed(command);
+}
+
+// ---- One lab ----
+
+struct LabBuild {
+    std::string scratch;      // the lab's scratch directory: its source, its runner, its images
+    std::string runner;       // the runner's path, empty when the build failed
+    std::string reason, log;  // why it failed, the compiler's output
+};
+
+std::string findLabFile(const fs::path& submission, const std::string& lab) {
+    for (const fs::path& candidate : {submission / lab / (lab + ".cpp"), submission / (lab + ".cpp")})
+        if (fs::is_regular_file(candidate)) return candidate.string();
+    return "";
+}
+
+LabBuild buildLab(const std::string& source, const std::string& lab, const std::string& scratch,
+                  const Toolchain& toolchain, const GraderOptions& options) {
+    LabBuild build{scratch, "", "", ""};
+    fs::create_directories(scratch);
+    if (source.empty()) {
+        build.reason = "no " + lab + ".cpp in the submission";
+        return build;
+    }
+    fs::copy_file(source, scratch + "/" + lab + ".cpp", fs::copy_options::overwrite_existing);
+    std::vector<std::string> compile = {toolchain.compiler};
+    compile.insert(compile.end(), toolchain.compileArgs.begin(), toolchain.compileArgs.end());
+    compile.insert(compile.end(), {"-c", lab + ".cpp", "-o", lab + ".o"});
+    std::vector<std::string> link = {toolchain.compiler, lab + ".o"};
+    link.insert(link.end(), toolchain.linkArgs.begin(), toolchain.linkArgs.end());
+    link.insert(link.end(), {"-o", "lab_runner"});
+    for (const std::vector<std::string>& step : {compile, link}) {
+        const SandboxResult r = runLimited(step, scratch, options.buildLimits);
+        build.log += r.stdoutText + r.stderrText;
+        if (!r.succeeded()) {
+            build.reason = std::string(&step == &compile ? "compile " : "link ") + failureReason(r);
+            return build;
+        }
+    }
+    build.runner = scratch + "/lab_runner";
+    return build;
+}
+
+// The solution's image of a scene, rendered by this program.
+ImageRgba8 renderExpected(const std::string& lab, const SceneOptions& options, Trace* trace) {
+    std::unique_ptr<Scene> scene = makeScene(lab + "@solution", options);
+    Context context;
+    RenderTarget color(options.width, options.height);
+    DepthTarget depth(options.width, options.height);
+    context.resetFrameStatistics();
+    if (trace) context.setTrace(trace);
+    scene->render(context, color, depth);
+    return {options.width, options.height, color.toRgba8()};
+}
+
+std::vector<std::string> runnerArgs(const LabBuild& build, const std::string& lab, const GradedScene& scene,
+                                    const std::string& png, const GraderOptions& options) {
+    std::vector<std::string> argv = {build.runner, "--scene", lab, "--out", png};
+    for (const std::string& arg : runnerOptionArgs(scene.options)) argv.push_back(arg);
+    argv.insert(argv.end(),
+                {"--threads", std::to_string(options.runnerThreads), "--path", options.runnerPath});
+    return argv;
+}
+
+TraceOptions pixelTraceOptions(uint32_t x, uint32_t y) {
+    TraceOptions t;
+    t.pixels = {int32_t(x), int32_t(y), int32_t(x), int32_t(y)};
+    t.maxGeometryRecords = 1u << 18;
+    return t;
+}
+
+// The diagnosis of a failing scene at its largest failing region's pixel, into the result.
+void diagnoseScene(SceneResult& result, const LabBuild& build, const std::string& lab,
+                   const GradedScene& scene, const PixelRegion& region, const GraderOptions& options) {
+    const std::string history = build.scratch + "/" + scene.name + ".history.json";
+    std::vector<std::string> argv =
+        runnerArgs(build, lab, scene, build.scratch + "/" + scene.name + ".traced.png", options);
+    argv.insert(argv.end(),
+                {"--pixel", std::to_string(region.x) + "," + std::to_string(region.y), "--history", history});
+    result.explanation = "the largest wrong region: " + std::to_string(region.pixels) + " pixels in (" +
+                         std::to_string(region.left) + ", " + std::to_string(region.top) + ")-(" +
+                         std::to_string(region.right) + ", " + std::to_string(region.bottom) +
+                         "); its worst pixel (" + std::to_string(region.x) + ", " + std::to_string(region.y) +
+                         ")";
+    const SandboxResult r = runLimited(argv, build.scratch, options.renderLimits);
+    if (!r.succeeded()) {
+        result.diagnosis = "no diagnosis: the traced render " + failureReason(r);
+        return;
+    }
+    try {
+        const Trace yours =
+            traceFromJson(readText(history, options.renderLimits.fileSizeBytes), "the submission's trace");
+        Trace theirs(pixelTraceOptions(region.x, region.y));
+        renderExpected(lab, scene.options, &theirs);
+        const Diagnosis d = diagnosePixel(yours, theirs, int32_t(region.x), int32_t(region.y));
+        result.diagnosis = std::string(stageName(d.stage)) + ": " + d.headline;
+        for (const std::string& line : d.details) result.explanation += "\n" + line;
+    } catch (const Error& e) {
+        result.diagnosis = std::string("no diagnosis: ") + e.what();
+    }
+}
+
+std::string metricOf(const ComparisonResult& c) {
+    return c.method == CompareMethod::Flip ? "FLIP mean" : "pixels outside the allowance";
+}
+
+void writeImages(SceneResult& result, const ImageRgba8& yours, const ImageRgba8& expected,
+                 const ComparisonResult* comparison, const std::string& out_dir, const std::string& stem) {
+    if (out_dir.empty()) return;
+    result.submissionImage = out_dir + "/" + stem + ".png";
+    result.expectedImage = out_dir + "/" + stem + ".expected.png";
+    writePngRgba8(result.submissionImage, yours.width, yours.height, yours.pixels);
+    writePngRgba8(result.expectedImage, expected.width, expected.height, expected.pixels);
+    if (!comparison || comparison->passed) return;
+    // Exact, threshold, position: 1/255 is a step past the allowance; 16 steps fill the ramp.
+    const bool flip = comparison->method == CompareMethod::Flip;
+    const float scale = flip ? 1.0f : 255.0f / 16.0f;
+    std::vector<float> error(comparison->error);
+    for (float& e : error) e = std::min(1.0f, e * scale);
+    const ImageRgba8 heat = heatMap(error, comparison->width, comparison->height, {.colourBar = true});
+    result.heatMapImage = out_dir + "/" + stem + ".heat.png";
+    result.heatMapScale = flip ? HeatMapScale{1, "FLIP error"} : HeatMapScale{16, "steps past the allowance"};
+    writePngRgba8(result.heatMapImage, heat.width, heat.height, heat.pixels);
+}
+
+SceneResult gradeScene(const LabBuild& build, const std::string& lab, const GradedScene& scene,
+                       const GraderOptions& options, const std::string& out_dir) {
+    const Clock::time_point start = Clock::now();
+    SceneResult result{scene.name,    scene.number, 0, scene.points, sceneVisibility(scene.isPublic),
+                       Verdict::Error};
+    result.explanation = scene.comparison.describe();
+    if (build.runner.empty()) {
+        result.reason = build.reason;
+        result.explanation = tail(build.log, 30);
+        return result;
+    }
+    const std::string png = build.scratch + "/" + scene.name + ".png";
+    const SandboxResult r =
+        runLimited(runnerArgs(build, lab, scene, png, options), build.scratch, options.renderLimits);
+    ImageRgba8 yours;
+    try {
+        if (!r.succeeded()) throw Error(ErrorCode::BadFile, failureReason(r));
+        yours = readImageRgba8(png);
+    } catch (const Error& e) {
+        result.reason = r.succeeded() ? std::string("no image: ") + e.what() : failureReason(r);
+        result.explanation = tail(r.stderrText, 20);
+        result.seconds = secondsSince(start);
+        return result;
+    }
+    const ImageRgba8 expected = renderExpected(lab, scene.options, nullptr);
+    if (yours.width != expected.width || yours.height != expected.height) {
+        result.verdict = Verdict::Fail;
+        result.diagnosis = "the image is " + std::to_string(yours.width) + "x" +
+                           std::to_string(yours.height) + ", the scene's " + std::to_string(expected.width) +
+                           "x" + std::to_string(expected.height);
+        result.seconds = secondsSince(start);
+        return result;
+    }
+    const ComparisonResult c = compare(scene.comparison, expected, yours);
+    result.comparison =
+        grade::Comparison{metricOf(c), c.figure, c.limit, c.method == CompareMethod::Flip ? "" : "pixels"};
+    result.verdict = c.passed ? Verdict::Pass : Verdict::Fail;
+    result.score = c.passed ? scene.points : 0;
+    writeImages(result, yours, expected, &c, out_dir, scene.name);
+    if (!c.passed) diagnoseScene(result, build, lab, scene, largestFailingRegion(c), options);
+    result.seconds = secondsSince(start);
+    return result;
+}
+
+// Runs work(i) for i in [0, count) on `jobs` threads.
+template <class Work>
+void parallelFor(size_t count, unsigned jobs, Work work) {
+    std::atomic<size_t> next{0};
+    std::vector<std::thread> threads;
+    for (unsigned t = 0; t < std::max(1u, std::min<unsigned>(jobs, unsigned(count))); ++t)
+        threads.emplace_back([&] {
+            for (size_t i = next++; i < count; i = next++) work(i);
+        });
+    for (std::thread& t : threads) t.join();
+}
+
+LabResult gradeLab(const fs::path& submission, const LabGrading& lab, const Toolchain& toolchain,
+                   const GraderOptions& options, const std::string& scratch_root) {
+    const LabBuild build =
+        buildLab(findLabFile(submission, lab.lab), lab.lab, scratch_root + "/" + lab.lab, toolchain, options);
+    const std::string out_dir = options.outDir.empty() ? "" : options.outDir + "/" + lab.lab;
+    if (!out_dir.empty()) fs::create_directories(out_dir);
+    LabResult result{lab.lab, lab.title, std::vector<SceneResult>(lab.scenes.size())};
+    std::mutex errors_mutex;
+    std::string first_error;
+    parallelFor(lab.scenes.size(), options.jobs, [&](size_t i) {
+        try {
+            result.scenes[i] = gradeScene(build, lab.lab, lab.scenes[i], options, out_dir);
+        } catch (const std::exception& e) {  // the grader's own failure (a disk full): stops the run
+            const std::lock_guard lock(errors_mutex);
+            if (first_error.empty()) first_error = "scene '" + lab.scenes[i].name + "': " + e.what();
+        }
+    });
+    RASTER_REQUIRE(first_error.empty(), InvalidState, "lab '" + lab.lab + "': " + first_error);
+    return result;
+}
+
+std::vector<LabGrading> labsToGrade(const fs::path& submission, const GraderOptions& options) {
+    std::vector<LabGrading> declared = discoverLabs(options.gradingRoot, options.publicOnly);
+    std::vector<LabGrading> chosen;
+    for (const std::string& name : options.labs) {
+        auto it = std::find_if(declared.begin(), declared.end(),
+                               [&](const LabGrading& l) { return l.lab == name; });
+        RASTER_REQUIRE(it != declared.end(), InvalidArgument,
+                       "--lab " + name + ": no lab of that name declares its grading in '" +
+                           options.gradingRoot + "/labs'");
+        chosen.push_back(*it);
+    }
+    if (!chosen.empty()) return chosen;
+    for (const LabGrading& lab : declared)
+        if (fs::is_regular_file(submission / (lab.lab + ".cpp"))) chosen.push_back(lab);
+    return chosen.empty() ? declared : chosen;
+}
+
+}  // namespace
+
+Toolchain readToolchain(const std::string& path) {
+    const Json j = Json::parse(readText(path, 1 << 20), nullptr, false);
+    const auto fail = [&](const std::string& what) -> Toolchain {
+        throw Error(ErrorCode::BadFile, "toolchain file '" + path + "': " + what);
+    };
+    if (j.is_discarded() || !j.is_object()) return fail("not a JSON object");
+    Toolchain t;
+    if (!j.contains("compiler") || !j["compiler"].is_string()) return fail("no \"compiler\" string");
+    t.compiler = j["compiler"].get<std::string>();
+    for (const char* key : {"compile", "link"}) {
+        if (!j.contains(key) || !j[key].is_array()) return fail(std::string("no \"") + key + "\" array");
+        for (const Json& arg : j[key]) {
+            if (!arg.is_string()) return fail(std::string("\"") + key + "\" holds a non-string");
+            const std::string s = arg.get<std::string>();
+            // Generator expressions over empty lists leave "", "-I" or "-D" behind: nothing to pass.
+            if (s.empty() || s == "-I" || s == "-D") continue;
+            (std::string(key) == "compile" ? t.compileArgs : t.linkArgs).push_back(s);
+        }
+    }
+    return t;
+}
+
+GraderOptions defaultGraderOptions() {
+    GraderOptions o;
+    o.buildLimits = {300, 300, 4 * kGiB, 64, 256 * kMiB, 1 * kMiB, 1 * kMiB};
+    o.renderLimits = {30, 30, 2 * kGiB, 64, 256 * kMiB, 1 * kMiB, 1 * kMiB};
+    return o;
+}
+
+GradeRun gradeSubmission(const std::string& submission, const GraderOptions& options) {
+    const Clock::time_point start = Clock::now();
+    RASTER_REQUIRE(fs::is_directory(submission), BadFile, "submission '" + submission + "' is not a folder");
+    const Toolchain toolchain = readToolchain(options.toolchainPath);
+    // Not dumpable: a submission running as the same user (a grader that is not root) can then not
+    // open /proc/<grader>/cwd, fd, environ or mem (the kernel's ptrace access check), where the
+    // grader's working directory, open files and memory would lead it to the solutions.
+    prctl(PR_SET_DUMPABLE, 0, 0, 0, 0);
+    const std::vector<LabGrading> labs = labsToGrade(submission, options);
+    const char* tmp = std::getenv("TMPDIR");
+    std::string scratch = std::string(tmp && *tmp ? tmp : "/tmp") + "/raster-grade-XXXXXX";
+    RASTER_REQUIRE(mkdtemp(scratch.data()), BadFile, "cannot make a scratch directory '" + scratch + "'");
+    // Searchable, not listable: the unprivileged user of a root grader reaches its lab's folder (handed
+    // to it by the sandbox) and no other.
+    chmod(scratch.c_str(), 0711);
+    GradeRun run{fs::path(submission).lexically_normal().filename().string(), {}, "", 0};
+    if (run.submission.empty())
+        run.submission = fs::path(submission).lexically_normal().parent_path().filename().string();
+    try {
+        for (const LabGrading& lab : labs)
+            run.labs.push_back(gradeLab(submission, lab, toolchain, options, scratch));
+    } catch (...) {
+        if (!options.keepScratch) fs::remove_all(scratch);
+        throw;
+    }
+    if (options.keepScratch)
+        run.output = "scratch directory kept: " + scratch + "\n";
+    else
+        fs::remove_all(scratch);
+    run.seconds = secondsSince(start);
+    return run;
+}
+
+void writeReports(const GradeRun& run, const std::string& out_dir) {
+    fs::create_directories(out_dir);
+    writeGradescopeResults(out_dir + "/results.json", run);
+    writeJUnitXml(out_dir + "/junit.xml", run);
+    writeHtmlReport(out_dir + "/report.html", run);
+}
+
+}  // namespace raster::grade
