@@ -1,0 +1,109 @@
+#!/usr/bin/env python3
+"""raster grade end to end (issue 32): grades one submission and checks its results.json.
+
+    grade_cli_test.py RASTER SOURCE_DIR WORK_DIR CASE
+
+CASE is `solutions` or `labs` (the source tree's own folders, graded on the real declarations: full
+marks, and less than full marks on every lab), or the name of a folder of tests/grader/ (graded on the
+small scenes of tests/grader/root: each must lose exactly the scenes its defect reaches, with the
+diagnosis or the reason naming it). Exit status 0 when every check holds, 1 with what did not.
+"""
+import json
+import os
+import shutil
+import subprocess
+import sys
+import time
+
+PARTICLES = {"small_start", "close_few"}  # tests/grader/root's scenes that draw particles
+# case: (scenes lost, verdict of those, words that must be in their output)
+CASES = {
+    "wrong_blend": (PARTICLES, "fail", ["blend: ", "your destination factor is Blend::InvSrcAlpha where the solution's is Blend::One"]),
+    "depth_write_on": (PARTICLES, "fail", ["depth test: ", "is depth write on?", "your depth write is on where the solution's is off"]),
+    "offset_after_w": (PARTICLES, "fail", ["geometry shader: ", "geometry shader output", "differs by"]),
+    "gs_drops_corner": (PARTICLES, "fail", ["geometry shader: ", "the geometry shader emitted 1 triangle (3 vertices)", "(solution: 2 triangles, 4 vertices)"]),
+    "crash": (PARTICLES, "error", ["crashed: ", "SIGSEGV"]),
+    "infinite_loop": (PARTICLES, "error", ["timed out: "]),
+    "unbounded_alloc": (PARTICLES, "error", ["ran out of memory: "]),
+    "fork_bomb": (PARTICLES, "error", ["too many processes: "]),
+    "snoop": (set(), "pass", []),
+    "alternative": (set(), "pass", []),
+}
+
+
+def grade(raster, submission, out, extra):
+    command = [raster, "grade", submission, "--out", out, "--jobs", "2"] + extra
+    start = time.monotonic()
+    done = subprocess.run(command, capture_output=True, text=True, timeout=900)
+    print(" ".join(command), f"({time.monotonic() - start:.1f} s)")
+    print(done.stdout)
+    if done.returncode != 0:
+        print(done.stderr)
+        raise SystemExit(f"raster grade exited with {done.returncode}, not 0")
+    with open(os.path.join(out, "results.json"), encoding="utf-8") as f:
+        return json.load(f)
+
+
+def scenes(results):
+    """{scene: (score, max_score, output)} from Gradescope's tests[] ("lab: scene" names)."""
+    return {t["name"].split(": ", 1)[1]: t for t in results["tests"]}
+
+
+def check_real(raster, source, out, case):
+    results = grade(raster, os.path.join(source, case), out, [])
+    errors = []
+    labs = {}
+    for t in results["tests"]:
+        lab = t["name"].split(": ", 1)[0]
+        score, top = labs.get(lab, (0, 0))
+        labs[lab] = (score + t["score"], top + t["max_score"])
+    if not labs:
+        errors.append("no lab was graded")
+    for lab, (score, top) in labs.items():
+        if case == "solutions" and score != top:
+            errors.append(f"{lab}: the solution scored {score} of {top}")
+        if case == "labs" and score >= top:
+            errors.append(f"{lab}: the untouched lab scored full marks ({score} of {top})")
+    return errors
+
+
+def check_case(raster, source, out, case):
+    lost, verdict, words = CASES[case]
+    submission = os.path.join(source, "tests", "grader", case)
+    root = os.path.join(source, "tests", "grader", "root")
+    extra = ["--grading-root", root, "--render-seconds", "8", "--render-memory", "768"]
+    results = grade(raster, submission, os.path.abspath(out), extra)
+    errors = []
+    by_scene = scenes(results)
+    if set(by_scene) != {"small_start", "no_particles", "close_few"}:
+        errors.append(f"graded {sorted(by_scene)}, not the three scenes of tests/grader/root")
+    for name, t in by_scene.items():
+        status = t["extra_data"]["verdict"]
+        if name in lost:
+            if t["score"] != 0 or status != verdict:
+                errors.append(f"{name}: {status} with {t['score']} points, expected {verdict} with 0")
+            for w in words:
+                if w not in t["output"]:
+                    errors.append(f"{name}: the output lacks {w!r}:\n{t['output']}")
+        elif t["score"] != t["max_score"]:
+            errors.append(f"{name}: lost ({status}, {t['score']} of {t['max_score']}) but should not:\n{t['output']}")
+    if case == "snoop":
+        for report in ("results.json", "junit.xml", "report.html"):
+            with open(os.path.join(out, report), encoding="utf-8") as f:
+                if "FORGED" in f.read():
+                    errors.append(f"{report} holds the submission's forgery")
+    return errors
+
+
+def main():
+    raster, source, work, case = sys.argv[1:5]
+    out = os.path.join(work, "grade-" + case)
+    shutil.rmtree(out, ignore_errors=True)
+    errors = check_real(raster, source, out, case) if case in ("solutions", "labs") else check_case(raster, source, out, case)
+    for e in errors:
+        print("FAILED:", e)
+    return 1 if errors else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
