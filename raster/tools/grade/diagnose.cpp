@@ -98,19 +98,21 @@ glm::vec2 toPixels(const glm::vec4& clip, const Trace& trace) {
             (0.5f - clip.y / clip.w * 0.5f) * float(trace.height())};
 }
 
+// The SV_Position of each vertex the geometry shader emitted for input primitive p, in order.
+std::vector<glm::vec4> gsPositions(const TraceDraw& d, uint32_t p) {
+    std::vector<glm::vec4> out;
+    for (const TraceGsVertex& v : d.gsVertices)
+        if (v.primitive == p && v.values.size() >= d.gsPosition + 4)
+            out.emplace_back(v.values[d.gsPosition], v.values[d.gsPosition + 1], v.values[d.gsPosition + 2],
+                             v.values[d.gsPosition + 3]);
+    return out;
+}
+
 // The geometry shader's output positions for input primitive p, vertex by vertex.
 std::optional<Found> gsPositionDifference(const Trace& yours, const TraceDraw& a, const TraceDraw& b,
                                           uint32_t p) {
     if (a.geometryShader.empty() || a.gsFloats < 4 || b.gsFloats < 4) return std::nullopt;
-    std::vector<glm::vec4> mine, theirs;
-    for (const TraceGsVertex& v : a.gsVertices)
-        if (v.primitive == p && v.values.size() >= a.gsPosition + 4)
-            mine.push_back(glm::vec4(v.values[a.gsPosition], v.values[a.gsPosition + 1],
-                                     v.values[a.gsPosition + 2], v.values[a.gsPosition + 3]));
-    for (const TraceGsVertex& v : b.gsVertices)
-        if (v.primitive == p && v.values.size() >= b.gsPosition + 4)
-            theirs.push_back(glm::vec4(v.values[b.gsPosition], v.values[b.gsPosition + 1],
-                                       v.values[b.gsPosition + 2], v.values[b.gsPosition + 3]));
+    const std::vector<glm::vec4> mine = gsPositions(a, p), theirs = gsPositions(b, p);
     for (size_t k = 0; k < std::min(mine.size(), theirs.size()); ++k) {
         if (same(mine[k], theirs[k])) continue;
         const glm::vec2 s = toPixels(mine[k], yours), t = toPixels(theirs[k], yours);

@@ -221,6 +221,10 @@ SceneResult gradeScene(const LabBuild& build, const std::string& lab, const Grad
     SceneResult result{scene.name,    scene.number, 0, scene.points, sceneVisibility(scene.isPublic),
                        Verdict::Error};
     result.explanation = scene.comparison.describe();
+    if (!findRegisteredScene(lab + "@solution")) {
+        result.reason = "no expected image: this raster was built without solutions/" + lab + "/";
+        return result;
+    }
     if (build.runner.empty()) {
         result.reason = build.reason;
         result.explanation = tail(build.log, 30);
