@@ -123,6 +123,13 @@ done
 bad scene smoke render fog smoke
 # microbench hands its arguments to Google Benchmark, which refuses what it does not know.
 bad --bogus "" microbench --bogus
+# grade: the submission must be a folder; its numbers and choices are checked like the others'.
+bad submission "" grade
+bad submission "/nonexistent" grade /nonexistent
+bad --jobs 0 grade "$tmp" --jobs 0
+bad --path fastest grade "$tmp" --path fastest
+run 1 grade "$tmp" --lab nosuchlab --out "$tmp/grade"
+says "--lab nosuchlab: no lab of that name"
 
 # ---- Unknown options and subcommands ------------------------------------------------------------
 for command in "bench particles" "render fog" "trace particles --stats" "view particles"; do
@@ -153,8 +160,10 @@ helps trace --stats --pixel --json --draw --limit --width --height --count --cub
 helps view --size --count --cubes --fog --threads --reference --plain --headless --script --screenshot-dir \
   --screenshot-window --solution "keys:"
 helps microbench --benchmark_filter "Google Benchmark"
+helps grade --lab --out --public --jobs --threads --path --render-seconds --render-memory --build-seconds \
+  --grading-root --toolchain --keep-scratch
 run 0 --help
-for command in bench microbench render trace view; do grep -q "^  $command " "$tmp/out" || fail "raster --help lacks $command"; done
+for command in bench grade microbench render trace view; do grep -q "^  $command " "$tmp/out" || fail "raster --help lacks $command"; done
 run 0 help
 grep -q "^  view " "$tmp/out" || fail "raster help lacks view"
 
