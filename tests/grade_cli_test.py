@@ -31,10 +31,12 @@ CASES = {
 }
 
 
-def grade(raster, submission, out, extra):
+def grade(raster, submission, out, extra, cwd):
+    """Runs raster grade from `cwd` (the source tree: so that a submission that reached the grader's
+    working directory, /proc/<grader>/cwd, would find solutions/ there; `snoop` tries)."""
     command = [raster, "grade", submission, "--out", out, "--jobs", "2"] + extra
     start = time.monotonic()
-    done = subprocess.run(command, capture_output=True, text=True, timeout=900)
+    done = subprocess.run(command, capture_output=True, text=True, timeout=900, cwd=cwd)
     print(" ".join(command), f"({time.monotonic() - start:.1f} s)")
     print(done.stdout)
     if done.returncode != 0:
@@ -50,7 +52,7 @@ def scenes(results):
 
 
 def check_real(raster, source, out, case):
-    results = grade(raster, os.path.join(source, case), out, [])
+    results = grade(raster, os.path.join(source, case), os.path.abspath(out), [], source)
     errors = []
     labs = {}
     for t in results["tests"]:
@@ -72,7 +74,7 @@ def check_case(raster, source, out, case):
     submission = os.path.join(source, "tests", "grader", case)
     root = os.path.join(source, "tests", "grader", "root")
     extra = ["--grading-root", root, "--render-seconds", "8", "--render-memory", "768"]
-    results = grade(raster, submission, os.path.abspath(out), extra)
+    results = grade(raster, submission, os.path.abspath(out), extra, source)
     errors = []
     by_scene = scenes(results)
     if set(by_scene) != {"small_start", "no_particles", "close_few"}:
