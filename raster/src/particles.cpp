@@ -10,11 +10,8 @@
 #include <type_traits>
 #include <utility>
 
-#if defined(__AVX__)
-#include <immintrin.h>
-#endif
-
 #include "raster/check.hpp"
+#include "raster/simd/ops.hpp"
 #include "raster/thread_pool.hpp"
 
 namespace raster {
@@ -152,23 +149,9 @@ template <class M, class F>
 
 [[gnu::always_inline]] inline float floorLane(float x) { return std::floor(x); }
 [[gnu::always_inline]] inline double floorLane(double x) { return std::floor(x); }
-[[gnu::always_inline]] inline F8 floorLane(F8 x) {
-#if defined(__AVX__)
-    return F8(_mm256_floor_ps(__m256(x)));
-#else
-    for (uint32_t i = 0; i < kLanes; ++i) x[i] = std::floor(x[i]);
-    return x;
-#endif
-}
+[[gnu::always_inline]] inline F8 floorLane(F8 x) { return simd::floor(x); }
 [[gnu::always_inline]] inline float sqrtLane(float x) { return std::sqrt(x); }
-[[gnu::always_inline]] inline F8 sqrtLane(F8 x) {
-#if defined(__AVX__)
-    return F8(_mm256_sqrt_ps(__m256(x)));
-#else
-    for (uint32_t i = 0; i < kLanes; ++i) x[i] = std::sqrt(x[i]);
-    return x;
-#endif
-}
+[[gnu::always_inline]] inline F8 sqrtLane(F8 x) { return simd::sqrt(x); }
 // A lattice coordinate (an integer-valued float within ±2^30) as 32 bits, wrapping arithmetic after.
 [[gnu::always_inline]] inline uint32_t toLattice(float f) { return uint32_t(int32_t(f)); }
 [[gnu::always_inline]] inline uint32_t toLattice(double f) { return uint32_t(int32_t(f)); }
@@ -757,15 +740,7 @@ void EffectorApplier::operator()(const Turbulence& t) const {
 
 // Whether any lane of a mask is set.
 [[gnu::always_inline]] inline bool anyLane(bool m) { return m; }
-[[gnu::always_inline]] inline bool anyLane(I8 m) {
-#if defined(__AVX__)
-    return _mm256_movemask_ps(__m256(m)) != 0;
-#else
-    for (uint32_t i = 0; i < kLanes; ++i)
-        if (m[i]) return true;
-    return false;
-#endif
-}
+[[gnu::always_inline]] inline bool anyLane(I8 m) { return simd::maskBits(m) != 0; }
 
 // The step's end for the block's living slots: position += ½(v₀ + v₁)·dt (+ advection·dt), age += dt.
 // Dead slots keep everything (their velocity v₀ = 0), whatever the effectors computed for them.

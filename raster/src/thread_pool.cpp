@@ -2,9 +2,7 @@
 
 #include <chrono>
 
-#if defined(__x86_64__) || defined(__i386__)
-#include <immintrin.h>
-#endif
+#include "raster/simd/ops.hpp"
 
 namespace raster {
 
@@ -89,9 +87,7 @@ template <class Done>
 bool spinBriefly(Done done) {
     const auto until = std::chrono::steady_clock::now() + kSpin;
     for (int i = 0; !done(); ++i) {
-#if defined(__x86_64__) || defined(__i386__)
-        _mm_pause();
-#endif
+        simd::pause();
         if ((i & 63) == 63 && std::chrono::steady_clock::now() > until) return done();
     }
     return true;

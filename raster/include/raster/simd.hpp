@@ -10,7 +10,9 @@
 // Such a shader also compiles for Float8x2 (below), two blocks side by side, which the pipeline
 // uses for billboards.
 //
-// Portable GCC/Clang vector extensions; AVX2 intrinsics where they exist for floor and gathers.
+// Portable GCC/Clang vector extensions; what they cannot express well (min and max with their NaN
+// rule, floor, gathers, a mask's bits) comes from the SIMD layer's operations (simd/ops.hpp), the
+// one place where a processor's intrinsics appear.
 #pragma once
 
 #include <cstdint>
@@ -20,43 +22,9 @@
 #include <glm/glm.hpp>
 
 #include "raster/shader_context.hpp"
-
-#if defined(__AVX__)
-// GCC 12's AVX-512 intrinsics start from a self-initialised "undefined" register (`__Y = __Y`), which
-// -Wmaybe-uninitialized reports wherever they are inlined (fixed in GCC 13). The warning is judged
-// at the header's lines, so it is silenced for them here, where the header is first included, and
-// stays on for the project's own code.
-// Clang (the fuzz and sanitizer builds) has no -Wmaybe-uninitialized and needs none of this.
-#if defined(__clang__)
-#include <immintrin.h>
-#else
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#pragma GCC diagnostic ignored "-Wuninitialized"
-#include <immintrin.h>
-#pragma GCC diagnostic pop
-#endif
-#endif
-
-// Whether the core has AVX-512 (F, BW, DQ, VL): then the particles' pair of 4×2 blocks is sampled
-// and blended in one 16-lane register (Texture2D::sampleFootprintsPair, ColorFast::writeWidePair),
-// the same operations lane by lane, so the same bits as the eight-lane code.
-#if defined(__AVX512F__) && defined(__AVX512BW__) && defined(__AVX512DQ__) && defined(__AVX512VL__)
-#define RASTER_AVX512 1
-#else
-#define RASTER_AVX512 0
-#endif
+#include "raster/simd/ops.hpp"
 
 namespace raster {
-
-namespace simd {
-using F32x8 = float __attribute__((vector_size(32)));
-using I32x8 = int32_t __attribute__((vector_size(32)));
-using U32x8 = uint32_t __attribute__((vector_size(32)));
-using F32x4 = float __attribute__((vector_size(16)));
-using F64x4 = double __attribute__((vector_size(32)));
-using I64x4 = int64_t __attribute__((vector_size(32)));
-}  // namespace simd
 
 struct Int8;
 
@@ -67,15 +35,7 @@ struct Mask8 {
     friend Mask8 operator|(Mask8 a, Mask8 b) { return {a.v | b.v}; }
     Mask8 operator!() const { return {~v}; }
     // Bit i set when lane i is true.
-    uint32_t bits() const {
-#if defined(__AVX__)
-        return uint32_t(_mm256_movemask_ps(_mm256_castsi256_ps(__m256i(v))));
-#else
-        uint32_t b = 0;
-        for (int i = 0; i < 8; ++i) b |= uint32_t(v[i] != 0) << i;
-        return b;
-#endif
-    }
+    uint32_t bits() const { return simd::maskBits(v); }
     static Mask8 fromBits(uint32_t bits) {
         const simd::I32x8 lanes = {1, 2, 4, 8, 16, 32, 64, 128};
         return {(lanes & simd::I32x8(simd::I32x8{} + int32_t(bits))) != 0};
@@ -140,20 +100,8 @@ inline Int8 select(Mask8 m, Int8 a, Int8 b) { return m.v ? a.v : b.v; }
 inline int32_t min(int32_t a, int32_t b) { return a < b ? a : b; }
 // min(a, b) = a < b ? a : b and max(a, b) = a > b ? a : b, lane by lane: a NaN in either gives b.
 // That is exactly what MINPS and MAXPS do, but GCC only finds them without the NaN rule.
-inline Float8 min(Float8 a, Float8 b) {
-#if defined(__AVX__)
-    return simd::F32x8(_mm256_min_ps(__m256(a.v), __m256(b.v)));
-#else
-    return a.v < b.v ? a.v : b.v;
-#endif
-}
-inline Float8 max(Float8 a, Float8 b) {
-#if defined(__AVX__)
-    return simd::F32x8(_mm256_max_ps(__m256(a.v), __m256(b.v)));
-#else
-    return a.v > b.v ? a.v : b.v;
-#endif
-}
+inline Float8 min(Float8 a, Float8 b) { return simd::min(a.v, b.v); }
+inline Float8 max(Float8 a, Float8 b) { return simd::max(a.v, b.v); }
 inline Int8 min(Int8 a, Int8 b) { return a.v < b.v ? a.v : b.v; }
 inline Int8 max(Int8 a, Int8 b) { return a.v > b.v ? a.v : b.v; }
 // Truncation toward zero, as int(float).
@@ -162,54 +110,27 @@ inline Float8 toFloat(Int8 a) { return __builtin_convertvector(a.v, simd::F32x8)
 // Eight doubles, lanes 0–3 then 4–7, each rounded to float as float(double) rounds it (to nearest,
 // ties to even). One conversion per half and one insert, where building the vector lane by lane
 // costs a dozen shuffles.
-inline Float8 toFloat8(simd::F64x4 lo, simd::F64x4 hi) {
-#if defined(__AVX__)
-    return simd::F32x8(_mm256_set_m128(_mm256_cvtpd_ps(__m256d(hi)), _mm256_cvtpd_ps(__m256d(lo))));
-#else
-    Float8 r;
-    for (int i = 0; i < 4; ++i) r.v[i] = float(lo[i]), r.v[4 + i] = float(hi[i]);
-    return r;
-#endif
-}
+inline Float8 toFloat8(simd::F64x4 lo, simd::F64x4 hi) { return simd::toFloat8(lo, hi); }
 
 // Largest integer ≤ a, as a float (exact for every float; NaN stays NaN).
-inline Float8 floor(Float8 a) {
-#if defined(__AVX__)
-    return simd::F32x8(_mm256_floor_ps(__m256(a.v)));
-#else
-    Float8 r;
-    for (int i = 0; i < 8; ++i) r.v[i] = __builtin_floorf(a.v[i]);
-    return r;
-#endif
-}
-inline Float8 sqrt(Float8 a) {
-#if defined(__AVX__)
-    return simd::F32x8(_mm256_sqrt_ps(__m256(a.v)));
-#else
-    Float8 r;
-    for (int i = 0; i < 8; ++i) r.v[i] = __builtin_sqrtf(a.v[i]);
-    return r;
-#endif
-}
+inline Float8 floor(Float8 a) { return simd::floor(a.v); }
+inline Float8 sqrt(Float8 a) { return simd::sqrt(a.v); }
 
 // 32-bit loads base[index[i]] for each lane.
-inline Int8 gather(const int32_t* base, Int8 index) {
-#if defined(__AVX2__)
-    return simd::I32x8(_mm256_i32gather_epi32(base, __m256i(index.v), 4));
-#else
-    Int8 r;
-    for (int i = 0; i < 8; ++i) r.v[i] = base[index.v[i]];
-    return r;
-#endif
+inline Int8 gather(const int32_t* base, Int8 index) { return simd::gather(base, index.v); }
+inline Float8 gather(const float* base, Int8 index) { return simd::gather(base, index.v); }
+
+// A 4×2 block's two rows of four (row0 the top row) as one register, lanes 0–3 and 4–7, and back.
+inline Float8 loadBlock(const float* row0, const float* row1) { return simd::loadRows(row0, row1); }
+inline Int8 loadBlock(const uint8_t* row0, const uint8_t* row1) { return simd::I32x8(simd::loadRows(row0, row1)); }
+inline Int8 loadBlock(const uint32_t* row0, const uint32_t* row1) { return simd::I32x8(simd::loadRows(row0, row1)); }
+inline void storeBlock(Float8 v, float* row0, float* row1) {
+    std::memcpy(row0, &v.v, 16);
+    std::memcpy(row1, reinterpret_cast<const char*>(&v.v) + 16, 16);
 }
-inline Float8 gather(const float* base, Int8 index) {
-#if defined(__AVX2__)
-    return simd::F32x8(_mm256_i32gather_ps(base, __m256i(index.v), 4));
-#else
-    Float8 r;
-    for (int i = 0; i < 8; ++i) r.v[i] = base[index.v[i]];
-    return r;
-#endif
+inline void storeBlock(Int8 v, uint8_t* row0, uint8_t* row1) {
+    std::memcpy(row0, &v.v, 16);
+    std::memcpy(row1, reinterpret_cast<const char*>(&v.v) + 16, 16);
 }
 
 // Scalar twins, so one shader template reads the same for float and Float8.
@@ -225,15 +146,7 @@ inline Float8 abs(Float8 a) { return simd::F32x8(simd::I32x8(a.v) & 0x7FFFFFFF);
 // image does not depend on its choices. One instruction with FMA hardware; without it the C
 // library's (exact, slow) fmaf.
 inline float fma(float a, float b, float c) { return __builtin_fmaf(a, b, c); }
-inline Float8 fma(Float8 a, Float8 b, Float8 c) {
-#if defined(__FMA__)
-    return simd::F32x8(_mm256_fmadd_ps(__m256(a.v), __m256(b.v), __m256(c.v)));
-#else
-    Float8 r;
-    for (int i = 0; i < 8; ++i) r.v[i] = __builtin_fmaf(a.v[i], b.v[i], c.v[i]);
-    return r;
-#endif
-}
+inline Float8 fma(Float8 a, Float8 b, Float8 c) { return simd::fma(a.v, b.v, c.v); }
 
 // Two 4×2 blocks side by side, sixteen lanes: a Float8 for each block, and every operation done on
 // the first block, then the second. A shader written over its scalar type also compiles for it,
@@ -328,19 +241,8 @@ inline Float8 bitsToFloat(Int8 i) { return simd::F32x8(i.v); }
 // To the nearest integer, ties to even (the default rounding mode; one CVTPS2DQ eight wide).
 // NaN and values outside int32 give INT32_MIN, as CVTPS2DQ does: converting them with a C++ cast
 // is undefined behaviour, and fastExpm1 lets a NaN argument through to here on purpose.
-inline int32_t toIntRound(float a) {
-    const float r = __builtin_rintf(a);
-    return r >= -2147483648.0f && r < 2147483648.0f ? int32_t(r) : INT32_MIN;
-}
-inline Int8 toIntRound(Float8 a) {
-#if defined(__AVX__)
-    return simd::I32x8(_mm256_cvtps_epi32(__m256(a.v)));
-#else
-    Int8 r;
-    for (int i = 0; i < 8; ++i) r.v[i] = toIntRound(a.v[i]);
-    return r;
-#endif
-}
+inline int32_t toIntRound(float a) { return simd::portable::roundToInt(a); }
+inline Int8 toIntRound(Float8 a) { return simd::roundToInt(a.v); }
 inline float toFloatI(int32_t i) { return float(i); }
 inline Float8 toFloatI(Int8 i) { return toFloat(i); }
 inline int32_t halfOf(int32_t k) { return k >> 1; }  // arithmetic shift: floor(k / 2)

@@ -64,9 +64,6 @@
 #include <glm/glm.hpp>
 
 #include "raster/simd.hpp"
-#if defined(__SSSE3__)
-#include <tmmintrin.h>
-#endif
 
 #include "raster/check.hpp"
 #include "raster/format.hpp"
@@ -187,33 +184,20 @@ class Texture2D {
     // Bilinear footprints for the fixed-point clamp path: for every texel coordinate pair (i, j) in
     // [−1, w−1] × [−1, h−1], the four clamped texels (i, j) (i+1, j) (i, j+1) (i+1, j+1) as 16 bytes,
     // channel-major (bytes 4c..4c+3 hold channel c of the four), each byte − 128, so that one load
-    // fetches what a bilinear tap needs in the order the filter multiplies it. Built for one-level
-    // RGBA8 textures up to kMaxFootprintSide on a side ((w+1)(h+1)·16 bytes, 4 MB at most).
+    // fetches what a bilinear tap needs in the order the filter multiplies it (simd/base.hpp has the
+    // filter's formula). Built for one-level RGBA8 textures up to kMaxFootprintSide on a side
+    // ((w+1)(h+1)·16 bytes, 4 MB at most).
     static constexpr int kMaxFootprintSide = 512;
     void buildFootprints();
     std::vector<uint8_t> footprints_;
     // The same footprints once more as four planes, one per channel, for the 512-bit pair sampler
-    // (RASTER_AVX512 only): dword k of plane c is bytes 4c..4c+3 of footprint k, and each plane ends
-    // in kPlaneWindow − 1 dwords of padding, so that a window of kPlaneWindow dwords that begins at
-    // any footprint stays inside it. A row of a billboard's block pair reads one window per plane
-    // and picks its lanes' footprints from it in registers (sampleFootprintsPair).
-    static constexpr int kPlaneWindow = 16;
+    // (RASTER_AVX512 only; simd::FootprintGrid::planeStride says how they are laid out).
+    static constexpr int kPlaneWindow = simd::kFootprintPlaneWindow;
     std::vector<int32_t> planes_;
     std::vector<AlphaSpan> alpha_spans_;  // the rows' spans, then the unions of 2, 4, 8… rows
     void buildAlphaSpans();
-    // What the footprint path reads per call, each broadcast from memory in one instruction: the
-    // pixel loop's stores to targets may alias the texture for all the compiler knows, so every
-    // call reloads it (hence no level list to walk and no int-to-float conversions).
-    struct FootprintGrid {
-        float width = 0, height = 0;   // of level 0, as floats
-        float lastI = 0, lastJ = 0;    // width − 1, height − 1
-        float rowStride = 0;           // width + 1 footprints per row
-        float originIndex = 0;         // width + 2: the index of footprint (0, 0), as (−1, −1) is index 0
-        int32_t maxI = 0, maxJ = 0;    // width − 1, height − 1
-        int32_t stride = 0;            // width + 1; 0 when there are no footprints
-        int32_t planeStride = 0;       // dwords from one plane to the next; 0 without planes
-        bool operator==(const FootprintGrid& other) const = default;
-    };
+    // What the footprint path reads per call (simd::FootprintGrid).
+    using FootprintGrid = simd::FootprintGrid;
     FootprintGrid grid_;
     // Whether footprints exist and `sampler` clamps both axes: the fixed-point filter's condition
     // shared by the scalar and eight-wide paths, which add what each needs besides (a Linear filter,
@@ -230,11 +214,9 @@ class Texture2D {
         const bool bilinear = (sampler.minFilter == Filter::Linear) & (sampler.magFilter == Filter::Linear);
         return footprintsClamp(sampler) & bilinear && !inReferenceMode();
     }
-    // The fixed-point filter for N blocks at once, each step done for every block before the next.
+    // The fixed-point filter for N blocks at once (simd::footprintFilter).
     template <int N>
     void sampleFootprints(const glm::vec<2, Float8> (&uv)[N], glm::vec<4, Float8> (&out)[N]) const;
-    // The same for two blocks in one 16-lane register (RASTER_AVX512), block 0 in lanes 0–7.
-    void sampleFootprintsPair(const glm::vec<2, Float8> (&uv)[2], glm::vec<4, Float8> (&out)[2]) const;
     // The same fixed-point filter for one pixel: footprint (i, j) (clamped here), weights α, β.
     glm::vec4 filterFootprint(int i, int j, float alpha, float beta) const;
 
@@ -407,49 +389,14 @@ inline glm::vec4 Texture2D::Sample(const SamplerState& sampler, glm::vec2 uv) co
     return sampleImplicitLod(sampler, uv);
 }
 
-namespace detail {
-
-// The fixed-point bilinear filter of footprints (the header's "Precision"). Footprint bytes are
-// stored as texel − 128, read as signed bytes. Horizontal weights (256 − a, a), a = min(round(α·256),
-// 255); vertical (2^14 − b, b), b = round(β·2^14) (round half to even, as CVTPS2DQ). Per channel
-//     sum = (2^14 − b)·((256 − a)·t00 + a·t10) + b·((256 − a)·t01 + a·t11),  t = byte − 128,
-// exact in 32 bits (|sum| ≤ 2^29), 2^22 units per byte; the result is (sum + 128·2^22) · 2^−22/255,
-// so that at α = β = 0 it is unorm8ToFloat(t00) bit for bit (the scalings by 2^k are exact).
-inline constexpr float kFootprintAlphaScale = 256.0f;
-inline constexpr int kFootprintAlphaMax = 255;
-inline constexpr float kFootprintBetaScale = 16384.0f;
-inline constexpr int kFootprintBetaOne = 16384;
-inline constexpr float kFootprintBiasSum = 536870912.0f;                // 128 · 2^22
-inline constexpr float kFootprintScale = (1.0f / 255.0f) / 4194304.0f;  // unorm8ToFloat's 1/255 · 2^−22
-
-}  // namespace detail
-
 inline glm::vec4 Texture2D::filterFootprint(int i, int j, float alpha, float beta) const {
     const int ii = std::clamp(i, -1, grid_.maxI) + 1, jj = std::clamp(j, -1, grid_.maxJ) + 1;
     const int8_t* f = reinterpret_cast<const int8_t*>(footprints_.data()) +
                       16 * (size_t(jj) * size_t(grid_.stride) + size_t(ii));
-    const int a = std::min(int(std::lrint(alpha * detail::kFootprintAlphaScale)), detail::kFootprintAlphaMax);
-    const int b = int(std::lrint(beta * detail::kFootprintBetaScale));
-    glm::vec4 out;
-#if defined(__SSSE3__)
-    // The four channels at once, as sampleFootprints does eight pixels: the same integers and the
-    // same three float roundings per channel.
-    const __m128i bytes = _mm_loadu_si128(reinterpret_cast<const __m128i*>(f));
-    const int wa = (255 - a) | (a << 8);
-    const __m128i low = _mm_maddubs_epi16(_mm_set1_epi16(1), bytes);
-    const __m128i rows = _mm_add_epi16(_mm_maddubs_epi16(_mm_set1_epi32(wa | (wa << 16)), bytes), low);
-    const __m128i sum = _mm_madd_epi16(rows, _mm_set1_epi32((detail::kFootprintBetaOne - b) | (b << 16)));
-    _mm_storeu_ps(&out.x, _mm_mul_ps(_mm_add_ps(_mm_cvtepi32_ps(sum), _mm_set1_ps(detail::kFootprintBiasSum)),
-                                     _mm_set1_ps(detail::kFootprintScale)));
-#else
-    for (int c = 0; c < 4; ++c) {
-        const int8_t* t = f + 4 * c;  // channel c of texels 00, 10, 01, 11
-        const int top = (256 - a) * t[0] + a * t[1], bottom = (256 - a) * t[2] + a * t[3];
-        const int sum = (detail::kFootprintBetaOne - b) * top + b * bottom;
-        out[c] = (float(sum) + detail::kFootprintBiasSum) * detail::kFootprintScale;
-    }
-#endif
-    return out;
+    // The fixed-point weights (the header's "Precision"; simd/base.hpp has the formula).
+    const int a = std::min(int(std::lrint(alpha * simd::kFootprintAlphaScale)), simd::kFootprintAlphaMax);
+    const int b = int(std::lrint(beta * simd::kFootprintBetaScale));
+    return simd::footprintFilter1(f, a, b);
 }
 
 namespace detail {
@@ -487,187 +434,27 @@ struct Bilinear8 {
 
 }  // namespace detail
 
-#if defined(__AVX2__)
 template <int N>
 [[gnu::always_inline]] inline void Texture2D::sampleFootprints(const glm::vec<2, Float8> (&uv)[N],
                                                                glm::vec<4, Float8> (&out)[N]) const {
     // filterLevel's linear filter with clamped addressing, i.e. filterFootprint, lane by lane the
-    // same operations. Each step below runs for all N blocks before the next step begins, so that
-    // their fetch chains are in flight together.
-#if RASTER_AVX512
-    if constexpr (N == 2) {
-        sampleFootprintsPair(uv, out);
-        return;
-    }
-#endif
-    // bilinear8 with the coordinates clamped to [−1, w−1] × [−1, h−1] in float rather than the
-    // footprint indices in integers: a coordinate clamped there selects the same footprint, whose two
-    // texels along that axis are then equal, so its weight cannot change the sum; NaN lands on −1.
-    Float8 alpha[N], beta[N];
-    simd::U32x8 index[N];
-    for (int n = 0; n < N; ++n) {
-        const Float8 a = min(max(uv[n].x * Float8(grid_.width) - Float8(0.5f), Float8(-1.0f)), Float8(grid_.lastI));
-        const Float8 b = min(max(uv[n].y * Float8(grid_.height) - Float8(0.5f), Float8(-1.0f)), Float8(grid_.lastJ));
-        const Float8 i = floor(a), j = floor(b);
-        alpha[n] = a - i, beta[n] = b - j;
-        // The footprint's byte offset, the index (j + 1)·stride + (i + 1) exact in float (below 2^19),
-        // unsigned so that each lane's address needs no sign extension.
-        const Int8 offset = toInt(j * Float8(grid_.rowStride) + i + Float8(grid_.originIndex)) << 4;
-        index[n] = simd::U32x8(offset.v);
-    }
-    // One 16-byte load per lane (channel-major already), then a transpose into one register per
-    // channel holding, per lane, the channel's bytes of the four texels (00, 10, 01, 11). (AVX2's
-    // gather instead of the loads: 1.5x slower on Zen 3.)
-    const uint8_t* f = footprints_.data();
-    __m256i channel[N][4];
-    for (int n = 0; n < N; ++n) {
-        auto load = [&](int l) { return _mm_loadu_si128(reinterpret_cast<const __m128i*>(f + index[n][l])); };
-        const __m256i y0 = _mm256_set_m128i(load(4), load(0)), y1 = _mm256_set_m128i(load(5), load(1));
-        const __m256i y2 = _mm256_set_m128i(load(6), load(2)), y3 = _mm256_set_m128i(load(7), load(3));
-        const __m256i t0 = _mm256_unpacklo_epi32(y0, y1), t1 = _mm256_unpackhi_epi32(y0, y1);
-        const __m256i t2 = _mm256_unpacklo_epi32(y2, y3), t3 = _mm256_unpackhi_epi32(y2, y3);
-        channel[n][0] = _mm256_unpacklo_epi64(t0, t2), channel[n][1] = _mm256_unpackhi_epi64(t0, t2);
-        channel[n][2] = _mm256_unpacklo_epi64(t1, t3), channel[n][3] = _mm256_unpackhi_epi64(t1, t3);
-    }
-    // filterFootprint's arithmetic, eight lanes at once. Weights per lane: the bytes (255 − a, a)
-    // twice, for PMADDUBSW's pairs (t00, t10) and (t01, t11), whose missing 1·t0 (256 − a does not fit
-    // a byte) is added from the pair's low byte; then the words (2^14 − b, b) for PMADDWD's rows.
-    __m256i wa[N], wb[N];
-    for (int n = 0; n < N; ++n) {
-        const Float8 a256 = alpha[n] * Float8(detail::kFootprintAlphaScale);
-        const __m256i wa8 = _mm256_min_epi32(_mm256_cvtps_epi32(__m256(a256.v)),
-                                             _mm256_set1_epi32(detail::kFootprintAlphaMax));
-        const __m256i wa16 = _mm256_or_si256(_mm256_slli_epi32(wa8, 8), _mm256_xor_si256(wa8, _mm256_set1_epi32(255)));
-        wa[n] = _mm256_or_si256(wa16, _mm256_slli_epi32(wa16, 16));
-        const __m256i wb14 = _mm256_cvtps_epi32(__m256((beta[n] * Float8(detail::kFootprintBetaScale)).v));
-        wb[n] = _mm256_or_si256(_mm256_slli_epi32(wb14, 16),
-                                _mm256_sub_epi32(_mm256_set1_epi32(detail::kFootprintBetaOne), wb14));
-    }
-    for (int c = 0; c < 4; ++c)
-        for (int n = 0; n < N; ++n) {
-            const __m256i bytes = channel[n][c];
-            // t00, t01 as words: 1·t0 + 0·t1, one operation where a shift pair is two (commit a4281f8)
-            const __m256i low = _mm256_maddubs_epi16(_mm256_set1_epi16(1), bytes);
-            const __m256i rows = _mm256_add_epi16(_mm256_maddubs_epi16(wa[n], bytes), low);
-            const __m256 sum = _mm256_cvtepi32_ps(_mm256_madd_epi16(rows, wb[n]));
-            out[n][c] = Float8(simd::F32x8(_mm256_mul_ps(_mm256_add_ps(sum, _mm256_set1_ps(detail::kFootprintBiasSum)),
-                                                         _mm256_set1_ps(detail::kFootprintScale))));
-        }
+    // same operations; N blocks' steps interleaved, two blocks in one register where the core has
+    // AVX-512.
+    simd::F32x8 u[N], v[N], rgba[N][4];
+    for (int n = 0; n < N; ++n) u[n] = uv[n].x.v, v[n] = uv[n].y.v;
+    simd::footprintFilter<N>(grid_, footprints_.data(), planes_.data(), u, v, rgba);
+    for (int n = 0; n < N; ++n) out[n] = {Float8(rgba[n][0]), Float8(rgba[n][1]), Float8(rgba[n][2]), Float8(rgba[n][3])};
 }
-#endif
-
-#if RASTER_AVX512
-[[gnu::always_inline]] inline void Texture2D::sampleFootprintsPair(const glm::vec<2, Float8> (&uv)[2],
-                                                                   glm::vec<4, Float8> (&out)[2]) const {
-    // sampleFootprints<2> with block 0 in lanes 0–7 and block 1 in lanes 8–15: the same operations
-    // lane by lane, so the same bits, in half the instructions.
-    auto join = [](Float8 lo, Float8 hi) {
-        return _mm512_insertf32x8(_mm512_castps256_ps512(__m256(lo.v)), __m256(hi.v), 1);
-    };
-    const __m512 u = join(uv[0].x, uv[1].x), v = join(uv[0].y, uv[1].y);
-    const __m512 half = _mm512_set1_ps(0.5f), minus_one = _mm512_set1_ps(-1.0f);
-    const __m512 a = _mm512_min_ps(
-        _mm512_max_ps(_mm512_sub_ps(_mm512_mul_ps(u, _mm512_set1_ps(grid_.width)), half), minus_one),
-        _mm512_set1_ps(grid_.lastI));
-    const __m512 b = _mm512_min_ps(
-        _mm512_max_ps(_mm512_sub_ps(_mm512_mul_ps(v, _mm512_set1_ps(grid_.height)), half), minus_one),
-        _mm512_set1_ps(grid_.lastJ));
-    const __m512 i = _mm512_roundscale_ps(a, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
-    const __m512 j = _mm512_roundscale_ps(b, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
-    const __m512 alpha = _mm512_sub_ps(a, i), beta = _mm512_sub_ps(b, j);
-    // The footprint's index (j + 1)·stride + (i + 1), exact in float (below 2^19).
-    const __m512i index =
-        _mm512_cvttps_epi32(_mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(j, _mm512_set1_ps(grid_.rowStride)), i),
-                                          _mm512_set1_ps(grid_.originIndex)));
-    // Each row of the pair (lanes 0–3 and 8–11 the top row, 4–7 and 12–15 the bottom one, as a
-    // billboard's blocks are laid out) reads a window of kPlaneWindow footprints from each plane,
-    // beginning at the row's lane 0 or 4, when all of the row's lanes fall inside it: a billboard's
-    // row has one texel row and texel columns that grow with x, so eight pixels span 8 footprints
-    // at one texel a pixel and 16 at just over two. Then VPERMT2D picks every lane's footprint from
-    // the two rows' windows, where the other way costs 16 extracts, 16 loads and a transpose.
-    const __m512i first =
-        _mm512_permutexvar_epi32(_mm512_setr_epi32(0, 0, 0, 0, 4, 4, 4, 4, 0, 0, 0, 0, 4, 4, 4, 4), index);
-    const __m512i offset = _mm512_sub_epi32(index, first);  // unsigned: a lane left of its row's first fails
-    static_assert(kPlaneWindow == 16, "VPERMT2D's second register begins at index 16");
-    __m512i channel[4];
-    if (_mm512_cmplt_epu32_mask(offset, _mm512_set1_epi32(kPlaneWindow)) == 0xFFFF) [[likely]] {
-        const __m512i pick = _mm512_or_si512(
-            offset, _mm512_setr_epi32(0, 0, 0, 0, 16, 16, 16, 16, 0, 0, 0, 0, 16, 16, 16, 16));
-        const int32_t* top = planes_.data() + uint32_t(_mm512_cvtsi512_si32(index));
-        const int32_t* bottom =
-            planes_.data() + uint32_t(_mm_cvtsi128_si32(_mm512_extracti32x4_epi32(index, 1)));
-        const size_t plane = size_t(grid_.planeStride);
-        for (int c = 0; c < 4; ++c)
-            channel[c] = _mm512_permutex2var_epi32(_mm512_loadu_si512(top + c * plane), pick,
-                                                   _mm512_loadu_si512(bottom + c * plane));
-    } else {
-        // Lane by lane as sampleFootprints: one 16-byte load each (byte offset index·16), transposed
-        // into one register per channel. Register r gathers lanes r, r + 4, r + 8, r + 12, one per
-        // 128-bit quarter, so that the transpose within quarters leaves lanes 4q..4q + 3 in quarter q.
-        const uint8_t* f = footprints_.data();
-        const __m512i bytes = _mm512_slli_epi32(index, 4);
-        __m128i quarter[4];
-        // Written out: the quarter is an immediate, which clang wants a constant (GCC unrolls a loop).
-        quarter[0] = _mm512_extracti32x4_epi32(bytes, 0);
-        quarter[1] = _mm512_extracti32x4_epi32(bytes, 1);
-        quarter[2] = _mm512_extracti32x4_epi32(bytes, 2);
-        quarter[3] = _mm512_extracti32x4_epi32(bytes, 3);
-        auto load = [&](__m128i q, auto lane) {
-            return _mm_loadu_si128(
-                reinterpret_cast<const __m128i*>(f + uint32_t(_mm_extract_epi32(q, decltype(lane)::value))));
-        };
-        __m512i y[4];
-        auto gatherLanes = [&](auto r) {
-            __m512i z = _mm512_castsi128_si512(load(quarter[0], r));
-            z = _mm512_inserti32x4(z, load(quarter[1], r), 1);
-            z = _mm512_inserti32x4(z, load(quarter[2], r), 2);
-            return _mm512_inserti32x4(z, load(quarter[3], r), 3);
-        };
-        y[0] = gatherLanes(std::integral_constant<int, 0>{}),
-        y[1] = gatherLanes(std::integral_constant<int, 1>{});
-        y[2] = gatherLanes(std::integral_constant<int, 2>{}),
-        y[3] = gatherLanes(std::integral_constant<int, 3>{});
-        const __m512i t0 = _mm512_unpacklo_epi32(y[0], y[1]), t1 = _mm512_unpackhi_epi32(y[0], y[1]);
-        const __m512i t2 = _mm512_unpacklo_epi32(y[2], y[3]), t3 = _mm512_unpackhi_epi32(y[2], y[3]);
-        channel[0] = _mm512_unpacklo_epi64(t0, t2), channel[1] = _mm512_unpackhi_epi64(t0, t2);
-        channel[2] = _mm512_unpacklo_epi64(t1, t3), channel[3] = _mm512_unpackhi_epi64(t1, t3);
-    }
-    // sampleFootprints' weights and filter.
-    const __m512i wa8 = _mm512_min_epi32(
-        _mm512_cvtps_epi32(_mm512_mul_ps(alpha, _mm512_set1_ps(detail::kFootprintAlphaScale))),
-        _mm512_set1_epi32(detail::kFootprintAlphaMax));
-    const __m512i wa16 =
-        _mm512_or_si512(_mm512_slli_epi32(wa8, 8), _mm512_xor_si512(wa8, _mm512_set1_epi32(255)));
-    const __m512i wa = _mm512_or_si512(wa16, _mm512_slli_epi32(wa16, 16));
-    const __m512i wb14 = _mm512_cvtps_epi32(_mm512_mul_ps(beta, _mm512_set1_ps(detail::kFootprintBetaScale)));
-    const __m512i wb = _mm512_or_si512(_mm512_slli_epi32(wb14, 16),
-                                       _mm512_sub_epi32(_mm512_set1_epi32(detail::kFootprintBetaOne), wb14));
-    for (int c = 0; c < 4; ++c) {
-        const __m512i low = _mm512_maddubs_epi16(_mm512_set1_epi16(1), channel[c]);
-        const __m512i rows = _mm512_add_epi16(_mm512_maddubs_epi16(wa, channel[c]), low);
-        const __m512 sum = _mm512_cvtepi32_ps(_mm512_madd_epi16(rows, wb));
-        const __m512 value = _mm512_mul_ps(_mm512_add_ps(sum, _mm512_set1_ps(detail::kFootprintBiasSum)),
-                                           _mm512_set1_ps(detail::kFootprintScale));
-        // Halves: the blend joins them again, and GCC folds the pair of shuffles away.
-        out[0][c] = Float8(simd::F32x8(_mm512_castps512_ps256(value)));
-        out[1][c] = Float8(simd::F32x8(_mm512_extractf32x8_ps(value, 1)));
-    }
-}
-#endif
 
 template <class UV>
     requires std::same_as<UV, glm::vec<2, Float8>>
 [[gnu::always_inline]] inline glm::vec<4, Float8> Texture2D::Sample(const SamplerState& sampler, const UV& uv) const {
     // The lecture's case first, with as few loads as the tests allow (see FootprintGrid).
     if (footprintsWide(sampler)) {
-#if defined(__AVX2__)
         const glm::vec<2, Float8> in[1] = {uv};
         glm::vec<4, Float8> out[1];
         sampleFootprints<1>(in, out);
         return out[0];
-#else
-        return sampleLanes(sampler, uv);  // filterFootprint lane by lane
-#endif
     }
     // The common case in registers: one level, one filter, clamped UNORM8 texels. Everything
     // else goes lane by lane through the scalar code.
@@ -699,11 +486,9 @@ template <class UV>
                                                                       const UV& uv) const {
     const glm::vec<2, Float8> in[2] = {{uv.x.h[0], uv.y.h[0]}, {uv.x.h[1], uv.y.h[1]}};
     glm::vec<4, Float8> out[2];
-#if defined(__AVX2__)
     if (footprintsWide(sampler))
         sampleFootprints<2>(in, out);
     else
-#endif
         out[0] = Sample(sampler, in[0]), out[1] = Sample(sampler, in[1]);
     return {Float8x2(out[0].x, out[1].x), Float8x2(out[0].y, out[1].y), Float8x2(out[0].z, out[1].z),
             Float8x2(out[0].w, out[1].w)};

@@ -30,30 +30,6 @@ namespace raster {
 // eight single-pixel calls.
 
 namespace detail {
-// A block's two rows of four as one register, loaded as the register's two halves. Not through a
-// copy on the stack: GCC builds that from two 16-byte stores (or four 8-byte ones), and a 32-byte
-// load of them cannot be forwarded, so it waits until the stores retire, i.e. until everything
-// before it in the loop has finished (perf put 8-12 % of the particle loop on that wait).
-template <class Lanes>
-Lanes loadRows(const void* row0, const void* row1) {
-    Lanes r;
-#if defined(__AVX__)
-    const __m128 lo = _mm_loadu_ps(static_cast<const float*>(row0));
-    const __m128 hi = _mm_loadu_ps(static_cast<const float*>(row1));
-    const __m256 both = _mm256_insertf128_ps(_mm256_castps128_ps256(lo), hi, 1);
-    r.v = (decltype(r.v))both;  // the same 32 bytes as another vector type
-#else
-    std::memcpy(&r.v, row0, 16);
-    std::memcpy(reinterpret_cast<char*>(&r.v) + 16, row1, 16);
-#endif
-    return r;
-}
-inline Float8 loadBlock(const float* row0, const float* row1) { return loadRows<Float8>(row0, row1); }
-inline Int8 loadBlock(const uint8_t* row0, const uint8_t* row1) { return loadRows<Int8>(row0, row1); }
-inline void storeBlock(Float8 v, float* row0, float* row1) {
-    std::memcpy(row0, &v.v, 16);
-    std::memcpy(row1, reinterpret_cast<const char*>(&v.v) + 16, 16);
-}
 template <ComparisonFunc F>
 Mask8 depthPasses8(Float8 fragment, Float8 stored) {
     if constexpr (F == ComparisonFunc::Less) return fragment < stored;
@@ -92,13 +68,13 @@ struct DepthFixed {
     uint32_t width;
     uint32_t testWide(int32_t x, int32_t y, Float8 z) const {
         const float* row0 = depth + size_t(y) * width + x;
-        return detail::depthPasses8<F>(z, detail::loadBlock(row0, row0 + width)).bits();
+        return detail::depthPasses8<F>(z, loadBlock(row0, row0 + width)).bits();
     }
     void writeWide(int32_t x, int32_t y, Float8 z, uint32_t mask) const {
         if constexpr (Write) {
             float* row0 = depth + size_t(y) * width + x;
-            const Float8 old = detail::loadBlock(row0, row0 + width);
-            detail::storeBlock(select(Mask8::fromBits(mask), z, old), row0, row0 + width);
+            const Float8 old = loadBlock(row0, row0 + width);
+            storeBlock(select(Mask8::fromBits(mask), z, old), row0, row0 + width);
         }
     }
     bool test(int32_t x, int32_t y, float z) const { return depthPassesT<F>(z, depth[size_t(y) * width + x]); }
@@ -204,7 +180,7 @@ struct ColorFast {
             std::memcpy(&bottom.v, row1, 32);
             both = top & bottom;
         } else {
-            both = detail::loadBlock(row0, row1);
+            both = loadBlock(row0, row1);
         }
         return (both == Int8(-1)).bits() == 0xFFu;
     }
@@ -218,96 +194,37 @@ struct ColorFast {
     [[gnu::always_inline]] void writeWide(int32_t x, int32_t y, const glm::vec<4, Float8>& c, uint32_t mask) const {
         uint8_t* row0 = pixels + 4 * (size_t(y) * width + x);
         uint8_t* row1 = row0 + 4 * size_t(width);
-        const Int8 old = detail::loadBlock(row0, row1);
-        Int8 r, g, b, a;
+        const Int8 old = loadBlock(row0, row1);
+        Int8 out;
         if constexpr (std::is_same_v<Blender, BlendAdditiveRgba8>) {
             // As BlendAdditiveRgba8::apply, in units of 1/255: the source term s·(255·a) rounded half
             // up, then the destination byte added exactly, clamped at 255.
-            const Float8 sa = detail::saturate8(c.w);
-            const Float8 sa255 = sa * Float8(255.0f), half(0.5f);
-            a = toInt(sa * sa255 + half);
-#if defined(__AVX2__)
-            // The colours clamped at 1 only: PACKUSDW below turns what saturate's 0 would have made
-            // 0 into 0 as well (a product in (−1, 0.5) truncates to 0, a lower one or a NaN, kept
-            // by min(1, NaN), converts to a negative integer and saturates to 0).
-            auto units = [&](Float8 s) {  // CVTTPS2DQ: truncation, INT_MIN for NaN and out of range
-                return Int8(simd::I32x8(_mm256_cvttps_epi32(__m256((min(Float8(1.0f), s) * sa255 + half).v))));
-            };
-            r = units(c.x), g = units(c.y), b = units(c.z);
-            // Per 128-bit half (one row): bytes r0..r3 g0..g3 b0..b3 a0..a3, transposed to pixels and
-            // added with unsigned saturation.
-            const __m256i planar = _mm256_packus_epi16(_mm256_packus_epi32(__m256i(r.v), __m256i(g.v)),
-                                                       _mm256_packus_epi32(__m256i(b.v), __m256i(a.v)));
-            const __m256i to_pixels = _mm256_setr_epi8(0, 4, 8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15, 0, 4, 8,
-                                                       12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15);
-            const Int8 sum = simd::I32x8(_mm256_adds_epu8(__m256i(old.v), _mm256_shuffle_epi8(planar, to_pixels)));
-            const Int8 out = mask == 0xFFu ? sum : select(Mask8::fromBits(mask), sum, old);
-            std::memcpy(row0, &out.v, 16);
-            std::memcpy(row1, reinterpret_cast<const char*>(&out.v) + 16, 16);
-            return;
-#else
-            r = toInt(detail::saturate8(c.x) * sa255 + half);
-            g = toInt(detail::saturate8(c.y) * sa255 + half);
-            b = toInt(detail::saturate8(c.z) * sa255 + half);
-            const Int8 k255(255);
-            r = min(k255, r + (old & Int8(0xFF))), g = min(k255, g + ((old >> 8) & Int8(0xFF)));
-            b = min(k255, b + ((old >> 16) & Int8(0xFF))), a = min(k255, a + ((old >> 24) & Int8(0xFF)));
-#endif
+            const Int8 sum = simd::additiveBlendRgba8(old.v, c.x.v, c.y.v, c.z.v, c.w.v);
+            out = mask == 0xFFu ? sum : select(Mask8::fromBits(mask), sum, old);
         } else {
-            r = detail::toUnorm8x8(c.x), g = detail::toUnorm8x8(c.y), b = detail::toUnorm8x8(c.z);
-            a = detail::toUnorm8x8(c.w);
+            const Int8 r = detail::toUnorm8x8(c.x), g = detail::toUnorm8x8(c.y), b = detail::toUnorm8x8(c.z);
+            const Int8 a = detail::toUnorm8x8(c.w);
+            out = select(Mask8::fromBits(mask), r | (g << 8) | (b << 16) | (a << 24), old);
         }
-        const Int8 packed = r | (g << 8) | (b << 16) | (a << 24);
-        const Int8 out = select(Mask8::fromBits(mask), packed, old);
-        std::memcpy(row0, &out.v, 16);
-        std::memcpy(row1, reinterpret_cast<const char*>(&out.v) + 16, 16);
+        storeBlock(out, row0, row1);
     }
     // Whether writeWidePair exists: the additive blend where the core has AVX-512.
-    static constexpr bool kWidePair = RASTER_AVX512 && std::is_same_v<Blender, BlendAdditiveRgba8>;
-#if RASTER_AVX512
+    static constexpr bool kWidePair = simd::kAvx512 && std::is_same_v<Blender, BlendAdditiveRgba8>;
     // writeWide for two side-by-side blocks at (x, y) and (x + 4, y) in one 16-lane register, block 0
     // in lanes 0–7 (`mask` bits 0–7) and block 1 in lanes 8–15: the same operations lane by lane, so
-    // the same bytes. Returns the lanes whose fragment cannot change the pixel (noOpWide's).
+    // the same bytes. Returns the lanes whose fragment cannot change the pixel (noOpWide's). Called
+    // only where kWidePair.
     [[gnu::always_inline]] uint32_t writeWidePair(int32_t x, int32_t y, const glm::vec<4, Float8x2>& c,
                                                   uint32_t mask) const {
-        static_assert(kWidePair);
-        uint8_t* row0 = pixels + 4 * (size_t(y) * width + x);
-        uint8_t* row1 = row0 + 4 * size_t(width);
-        auto join = [](const Float8x2& v) {
-            return _mm512_insertf32x8(_mm512_castps256_ps512(__m256(v.h[0].v)), __m256(v.h[1].v), 1);
-        };
-        // The lanes' order in 128-bit quarters: block 0's top row, its bottom row, block 1's top row,
-        // its bottom row; each pixel row of eight is one 32-byte load and store.
-        const __m512i quarters = _mm512_setr_epi64(0, 1, 4, 5, 2, 3, 6, 7);
-        const __m512i rows = _mm512_inserti64x4(
-            _mm512_castsi256_si512(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(row0))),
-            _mm256_loadu_si256(reinterpret_cast<const __m256i*>(row1)), 1);
-        const __m512i old = _mm512_permutexvar_epi64(quarters, rows);
-        const __m512 zero = _mm512_setzero_ps(), one = _mm512_set1_ps(1.0f), half = _mm512_set1_ps(0.5f);
-        const __m512 sa = _mm512_min_ps(_mm512_max_ps(join(c.w), zero), one);  // saturate8's order
-        const uint32_t no_ops = _mm512_cmpeq_ps_mask(sa, zero);
-        const __m512 sa255 = _mm512_mul_ps(sa, _mm512_set1_ps(255.0f));
-        const __m512i a = _mm512_cvttps_epi32(_mm512_add_ps(_mm512_mul_ps(sa, sa255), half));
-        auto units = [&](const Float8x2& s) {  // writeWide's units
-            return _mm512_cvttps_epi32(
-                _mm512_add_ps(_mm512_mul_ps(_mm512_min_ps(one, join(s)), sa255), half));
-        };
-        const __m512i planar = _mm512_packus_epi16(_mm512_packus_epi32(units(c.x), units(c.y)),
-                                                   _mm512_packus_epi32(units(c.z), a));
-        const __m512i to_pixels =
-            _mm512_broadcast_i32x4(_mm_setr_epi8(0, 4, 8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15));
-        const __m512i sum = _mm512_adds_epu8(old, _mm512_shuffle_epi8(planar, to_pixels));
-        const __m512i out =
-            _mm512_permutexvar_epi64(quarters, _mm512_mask_blend_epi32(__mmask16(mask), old, sum));
-        _mm256_storeu_si256(reinterpret_cast<__m256i*>(row0), _mm512_castsi512_si256(out));
-        _mm256_storeu_si256(reinterpret_cast<__m256i*>(row1), _mm512_extracti64x4_epi64(out, 1));
-        return no_ops;
+        if constexpr (kWidePair) {
+            uint8_t* row0 = pixels + 4 * (size_t(y) * width + x);
+            const simd::F32x8 rgba[4][2] = {
+                {c.x.h[0].v, c.x.h[1].v}, {c.y.h[0].v, c.y.h[1].v}, {c.z.h[0].v, c.z.h[1].v}, {c.w.h[0].v, c.w.h[1].v}};
+            return simd::additiveBlendRgba8Pair(row0, row0 + 4 * size_t(width), rgba, mask);
+        } else {
+            return 0;
+        }
     }
-#else
-    uint32_t writeWidePair(int32_t, int32_t, const glm::vec<4, Float8x2>&, uint32_t) const {
-        return 0;
-    }
-#endif
     template <class Colors>
     bool isNoOp(const Colors& c) const {
         return Blender::isNoOp(colorAt(c, 0));

@@ -119,79 +119,19 @@ class TransparentColumns {
     }
 
     // rowPair for the n row pairs j0, j0 + 2, …, j0 + 2(n − 1): lo[q], hi[q] for row pair j0 + 2q,
-    // the same values. With AVX2 four row pairs at a time (the same double operations, lane by
-    // lane): the rectangle loop asks for all of a tile's row pairs at once. lo and hi must have room
-    // for n rounded up to a multiple of four (kRowPairsPadding more); what lies past n is unspecified.
+    // the same values. With AVX2 four row pairs at a time (simd::spanIntervals, the same double
+    // operations, lane by lane): the rectangle loop asks for all of a tile's row pairs at once. lo
+    // and hi must have room for n rounded up to a multiple of four (kRowPairsPadding more); what
+    // lies past n is unspecified.
     void rowPairs(const Planes& p, int32_t j0, int n, int32_t i_min, int32_t i_max, int32_t* lo, int32_t* hi) const {
         int q = 0;
-#if defined(__AVX2__)
         if (p.usable && !p.constant_u) {
-            const int* spans = reinterpret_cast<const int*>(texture_->alphaSpanTable().data());  // first, last, …
-            static_assert(sizeof(Texture2D::AlphaSpan) == 2 * sizeof(int));
-            const __m256d b0 = _mm256_set1_pd(p.b0), sb = _mm256_set1_pd(p.sb), margin = _mm256_set1_pd(kMargin);
-            const __m256d a0 = _mm256_set1_pd(p.a0), inv_sa = _mm256_set1_pd(p.inv_sa);
-            const __m256d a_below = _mm256_set1_pd(p.a_below), a_above = _mm256_set1_pd(p.a_above);
-            const __m256d lo_min = _mm256_set1_pd(double(i_min)), lo_max = _mm256_set1_pd(double(i_max) + 1.0);
-            const __m256d hi_min = _mm256_set1_pd(double(i_min) - 1.0), hi_max = _mm256_set1_pd(double(i_max));
-            const __m128i one = _mm_set1_epi32(1), zero = _mm_setzero_si128();
-            const __m128i rows = _mm_set1_epi32(height_), last_row = _mm_set1_epi32(height_ - 1);
-            const __m128i last_column = _mm_set1_epi32(width_ - 1);
-            const __m128i empty_lo = _mm_set1_epi32(i_min), empty_hi = _mm_set1_epi32(i_min - 1);
-            auto clampRow = [&](__m128i r) { return _mm_max_epi32(_mm_min_epi32(r, last_row), zero); };
-            auto wide = [](__m128i mask) { return _mm256_castsi256_pd(_mm256_cvtepi32_epi64(mask)); };
-            for (; q < n; q += 4) {
-                const __m256d j = _mm256_add_pd(_mm256_set1_pd(double(j0 + 2 * q)), _mm256_set_pd(6, 4, 2, 0));
-                const __m256d top = _mm256_add_pd(b0, _mm256_mul_pd(sb, j)), bottom = _mm256_add_pd(top, sb);
-                const __m256d b_lo = _mm256_sub_pd(_mm256_min_pd(top, bottom), margin);
-                const __m256d b_hi = _mm256_add_pd(_mm256_max_pd(top, bottom), margin);
-                const __m128i r0 = clampRow(_mm256_cvttpd_epi32(_mm256_floor_pd(b_lo)));
-                const __m128i r1 = clampRow(_mm_add_epi32(_mm256_cvttpd_epi32(_mm256_floor_pd(b_hi)), one));
-                // k = floor(log2(r1 − r0 + 1)) from the exponent of the count as a float (exact: ≤ 4096).
-                const __m128i count = _mm_add_epi32(_mm_sub_epi32(r1, r0), one);
-                const __m128i k = _mm_sub_epi32(_mm_srli_epi32(_mm_castps_si128(_mm_cvtepi32_ps(count)), 23),
-                                                _mm_set1_epi32(127));
-                const __m128i level = _mm_mullo_epi32(k, rows);
-                const __m128i ia = _mm_slli_epi32(_mm_add_epi32(level, r0), 1);
-                const __m128i ib = _mm_slli_epi32(
-                    _mm_add_epi32(level, _mm_sub_epi32(_mm_add_epi32(r1, one), _mm_sllv_epi32(one, k))), 1);
-                // Each span's (first, last) as one 8-byte load: gathers measured slower on Zen 5
-                // (PERFORMANCE.md, commit 3ff7f95).
-                auto spansAt = [&](__m128i index) {  // the four spans' firsts and lasts
-                    alignas(16) int32_t at[4];
-                    _mm_store_si128(reinterpret_cast<__m128i*>(at), index);
-                    auto span = [&](int e) {
-                        return _mm_loadl_epi64(reinterpret_cast<const __m128i*>(spans + at[e]));
-                    };
-                    const __m128 s01 = _mm_castsi128_ps(_mm_unpacklo_epi64(span(0), span(1)));
-                    const __m128 s23 = _mm_castsi128_ps(_mm_unpacklo_epi64(span(2), span(3)));
-                    return std::pair{_mm_castps_si128(_mm_shuffle_ps(s01, s23, _MM_SHUFFLE(2, 0, 2, 0))),
-                                     _mm_castps_si128(_mm_shuffle_ps(s01, s23, _MM_SHUFFLE(3, 1, 3, 1)))};
-                };
-                const auto [first_a, last_a] = spansAt(ia);
-                const auto [first_b, last_b] = spansAt(ib);
-                const __m128i first = _mm_min_epi32(first_a, first_b), last = _mm_max_epi32(last_a, last_b);
-                const __m128i empty = _mm_cmpgt_epi32(first, last);
-                const __m256d a_lo = _mm256_blendv_pd(
-                    _mm256_sub_pd(_mm256_cvtepi32_pd(_mm_sub_epi32(first, one)), margin), a_below,
-                    wide(_mm_cmpeq_epi32(first, zero)));
-                const __m256d a_hi = _mm256_blendv_pd(
-                    _mm256_add_pd(_mm256_cvtepi32_pd(_mm_add_epi32(last, one)), margin), a_above,
-                    wide(_mm_cmpeq_epi32(last, last_column)));
-                const __m256d t_lo = _mm256_mul_pd(_mm256_sub_pd(a_lo, a0), inv_sa);
-                const __m256d t_hi = _mm256_mul_pd(_mm256_sub_pd(a_hi, a0), inv_sa);
-                const __m256d i0 = _mm256_ceil_pd(_mm256_min_pd(t_lo, t_hi));
-                const __m256d i1 = _mm256_floor_pd(_mm256_max_pd(t_lo, t_hi));
-                const __m128i l = _mm_blendv_epi8(
-                    _mm256_cvttpd_epi32(_mm256_min_pd(_mm256_max_pd(i0, lo_min), lo_max)), empty_lo, empty);
-                const __m128i h = _mm_blendv_epi8(
-                    _mm256_cvttpd_epi32(_mm256_min_pd(_mm256_max_pd(i1, hi_min), hi_max)), empty_hi, empty);
-                // Four at a time, past n too (see the contract above): the remainder copied element
-                // by element compiled to two calls to memcpy per rectangle.
-                _mm_storeu_si128(reinterpret_cast<__m128i*>(lo + q), l);
-                _mm_storeu_si128(reinterpret_cast<__m128i*>(hi + q), h);
-            }
+            static_assert(sizeof(Texture2D::AlphaSpan) == 2 * sizeof(int32_t));
+            const simd::SpanRows rows{reinterpret_cast<const int32_t*>(texture_->alphaSpanTable().data()),
+                                      width_, height_, p.a0, p.inv_sa, p.b0, p.sb, p.a_below, p.a_above,
+                                      kMargin, i_min, i_max};
+            q = simd::spanIntervals(rows, j0, n, lo, hi);  // none where there is no vector version
         }
-#endif
         for (; q < n; ++q) rowPair(p, j0 + 2 * q, i_min, i_max, lo[q], hi[q]);
     }
 

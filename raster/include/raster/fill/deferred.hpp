@@ -86,7 +86,7 @@ class DeferredTile {
                         depth_.writeWide(x, y, z, live);
                         passed += uint64_t(std::popcount(live));
                         uint32_t* row = &owner_[y - rect_.y0][x - rect_.x0];
-                        simd::I32x8 ids = detail::loadRows<Int8>(row, row + kTileSize).v;
+                        simd::I32x8 ids = loadBlock(row, row + kTileSize).v;
                         ids = select(Mask8::fromBits(live), Int8(int32_t(id)), Int8(ids)).v;
                         std::memcpy(row, &ids, 16);
                         std::memcpy(row + kTileSize, reinterpret_cast<const char*>(&ids) + 16, 16);
@@ -105,7 +105,7 @@ class DeferredTile {
         for (int32_t y = rect_.y0; y <= rect_.y1; y += 2) {
             for (int32_t x = rect_.x0; x <= rect_.x1; x += 4) {
                 const uint32_t* row = &owner_[y - rect_.y0][x - rect_.x0];
-                const simd::I32x8 ids = detail::loadRows<Int8>(row, row + kTileSize).v;
+                const simd::I32x8 ids = loadBlock(row, row + kTileSize).v;
                 uint32_t pending = ~Mask8{ids == -1}.bits() & 0xFFu;
                 if constexpr (T::kPairs) {
                     if (shadePairOfBlocks(x, y, row, ids, pending, shaded)) {
@@ -164,7 +164,7 @@ class DeferredTile {
         if (!pending || x + 4 > rect_.x1) return false;
         const int32_t n = ids[std::countr_zero(pending)];
         const uint32_t live_left = Mask8{ids == n}.bits();
-        const simd::I32x8 next = detail::loadRows<Int8>(row + 4, row + 4 + kTileSize).v;
+        const simd::I32x8 next = loadBlock(row + 4, row + 4 + kTileSize).v;
         const uint32_t live_right = Mask8{next == n}.bits();
         if (live_left != pending || live_right == 0 || live_right != (~Mask8{next == -1}.bits() & 0xFFu))
             return false;

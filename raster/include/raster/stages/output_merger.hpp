@@ -17,13 +17,11 @@
 #include <type_traits>
 
 #include <glm/glm.hpp>
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
 
 #include "raster/check.hpp"
 #include "raster/format.hpp"
 #include "raster/render_target.hpp"
+#include "raster/simd/ops.hpp"
 #include "raster/states.hpp"
 
 namespace raster {
@@ -80,11 +78,6 @@ Real saturate(Real v) {
 template <class Real>
 glm::vec<4, Real> saturate(const glm::vec<4, Real>& v) {
     return {saturate(v.x), saturate(v.y), saturate(v.z), saturate(v.w)};
-}
-
-// floatToUnorm8 without its branches (same result for every float, NaN included).
-inline uint8_t toUnorm8Branchless(float v) {
-    return uint8_t(saturate(v) * 255.0f + 0.5f);
 }
 
 // The four-component factor `b` names (see Blend), in units where 1 is `one`: callers that work in
@@ -290,49 +283,12 @@ void mergeFragment(RenderTarget& rt, uint32_t x, uint32_t y, const RenderTargetB
 // bytes mergeFragment<float> would; isNoOp(src) is true when apply could not change any pixel value, so
 // the fragment may be skipped. No branches on the data.
 
-namespace detail {
-
-#if defined(__SSE2__)
-// All four channels in one register. Every lane performs the scalar path's IEEE operations in the same
-// order, hence the same bytes. Written with intrinsics because the compiler turns the scalar clamps
-// into branches (it threads "clamped to 0" and "clamped to 1" into constant bytes).
-
-// saturate() per lane: maxps returns its second operand when the first is NaN, so NaN -> 0.
-inline __m128 saturate4(__m128 v) { return _mm_min_ps(_mm_max_ps(v, _mm_setzero_ps()), _mm_set1_ps(1.0f)); }
-
-// unorm8ToFloat() per byte.
-inline __m128 loadUnorm8x4(const uint8_t* pixel) {
-    int32_t bits;
-    std::memcpy(&bits, pixel, 4);
-    const __m128i zero = _mm_setzero_si128();
-    const __m128i n = _mm_unpacklo_epi16(_mm_unpacklo_epi8(_mm_cvtsi32_si128(bits), zero), zero);
-    return _mm_mul_ps(_mm_cvtepi32_ps(n), _mm_set1_ps(1.0f / 255.0f));
-}
-
-// floatToUnorm8() per lane: the truncating conversion is the (uint8_t) cast; the packs cannot saturate
-// because every lane is already in [0, 255].
-inline void storeUnorm8x4(uint8_t* pixel, __m128 v) {
-    const __m128 scaled = _mm_add_ps(_mm_mul_ps(saturate4(v), _mm_set1_ps(255.0f)), _mm_set1_ps(0.5f));
-    const __m128i words = _mm_packs_epi32(_mm_cvttps_epi32(scaled), _mm_setzero_si128());
-    const int32_t bits = _mm_cvtsi128_si32(_mm_packus_epi16(words, words));
-    std::memcpy(pixel, &bits, 4);
-}
-#endif
-
-}  // namespace detail
-
 // Blending off: the pixel becomes src, clamped and rounded.
 struct BlendReplaceRgba8 {
+    // All four channels in one register (simd::storeUnorm8x4): every lane performs floatToUnorm8's
+    // IEEE operations in the same order, hence the same bytes.
     static void apply(uint8_t* pixel, const glm::vec4& src) {
-#if defined(__SSE2__)
-        detail::storeUnorm8x4(pixel, _mm_loadu_ps(&src.x));
-#else
-        // Built in a local and copied once: as a uint8_t*, pixel may alias src for all the compiler
-        // knows, and storing byte by byte would reload src after every store.
-        uint8_t out[4];
-        for (int c = 0; c < 4; ++c) out[c] = detail::toUnorm8Branchless(src[c]);
-        std::memcpy(pixel, out, 4);
-#endif
+        simd::storeUnorm8x4(pixel, src);
     }
     static bool isNoOp(const glm::vec4&) { return false; }
 };
@@ -342,24 +298,9 @@ struct BlendReplaceRgba8 {
 struct BlendAdditiveRgba8 {
     // The alpha channel's s.a * s.a is the colour channels' expression too, so all four lanes do
     // s * s.a + d: the operations blendColor performs, in its order (its d * 1 is exact).
+    // In one register (simd::additiveBlendUnorm8x4): detail::addUnits255 in every lane.
     static void apply(uint8_t* pixel, const glm::vec4& src) {
-#if defined(__SSE2__)
-        // detail::addUnits255 in every lane: s · (a · 255) + 0.5 truncated, then the destination
-        // bytes added with unsigned saturation (the clamp at 255).
-        const __m128 s = detail::saturate4(_mm_loadu_ps(&src.x));
-        const __m128 alpha255 = _mm_mul_ps(_mm_shuffle_ps(s, s, _MM_SHUFFLE(3, 3, 3, 3)), _mm_set1_ps(255.0f));
-        const __m128i units = _mm_cvttps_epi32(_mm_add_ps(_mm_mul_ps(s, alpha255), _mm_set1_ps(0.5f)));
-        const __m128i words = _mm_packs_epi32(units, _mm_setzero_si128());
-        int32_t bits;
-        std::memcpy(&bits, pixel, 4);
-        bits = _mm_cvtsi128_si32(_mm_adds_epu8(_mm_packus_epi16(words, words), _mm_cvtsi32_si128(bits)));
-        std::memcpy(pixel, &bits, 4);
-#else
-        const glm::vec4 s = detail::saturate(src);
-        uint8_t out[4];
-        for (int c = 0; c < 4; ++c) out[c] = detail::addUnits255(pixel[c], s[c], s.w);
-        std::memcpy(pixel, out, 4);
-#endif
+        simd::additiveBlendUnorm8x4(pixel, src);
     }
     static bool isNoOp(const glm::vec4& src) { return detail::saturate(src.w) == 0.0f; }
 };

@@ -90,15 +90,8 @@ struct BlockLaneOffsets {
 namespace detail {
 // Bit l set where lane l of the eight (two vectors of four) is >= 0.
 inline uint32_t nonNegativeBits(simd::I64x4 top, simd::I64x4 bottom) {
-#if defined(__AVX2__)
-    const simd::I64x4 t = top >= 0, b = bottom >= 0;
-    return uint32_t(_mm256_movemask_pd(_mm256_castsi256_pd(__m256i(t)))) |
-           uint32_t(_mm256_movemask_pd(_mm256_castsi256_pd(__m256i(b)))) << 4;
-#else
-    uint32_t bits = 0;
-    for (int l = 0; l < 4; ++l) bits |= uint32_t(top[l] >= 0) << l | uint32_t(bottom[l] >= 0) << (l + 4);
-    return bits;
-#endif
+    const simd::I64x4 t = top >= 0, b = bottom >= 0;  // clang's comparison gives long long lanes
+    return simd::maskBits(t) | simd::maskBits(b) << 4;
 }
 }  // namespace detail
 
