@@ -9,8 +9,10 @@
 //   Sample     Texture2D::Sample / SampleLevel                                          items = samples
 //   Scene      whole frames of the two benchmark scenes at 1280×720                   items = frames
 //   Particles  simulation steps, upload and depth sorts of 10^6 particles (microbench_particles.cpp)
-// Benchmarks are registered here, not at static-initialisation time, so that the other subcommands
-// of the program carry none of this. All data is made before the timed loops.
+// A program of its own, build/bin/raster-microbench, that `raster microbench` runs (microbench_command.cpp):
+// its two full-screen draws instantiate the pipeline twice, a third of the time `raster` alone takes to
+// compile, so the README's first command, which builds `raster`, does not build it. All data is made
+// before the timed loops.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -25,7 +27,6 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "commands.hpp"
 #include "options.hpp"
 #include "raster/pipeline.hpp"
 #include "raster/scenes.hpp"
@@ -501,19 +502,15 @@ int runMicrobench(std::vector<std::string> args) {
 
 }  // namespace
 
-// Every argument after "microbench", from the first one that is not --help, goes to Google
-// Benchmark as it is (CLI11's prefix command).
-Command addMicrobench(CLI::App& app) {
-    CLI::App* command = addCommand(app, "microbench", "per-stage microbenchmarks (Google Benchmark)");
-    command->prefix_command();
-    command->footer(
-        "The arguments are Google Benchmark's flags, passed on to it as they are, e.g.\n"
-        "  --benchmark_filter=REGEX     run only the benchmarks whose names match\n"
-        "  --benchmark_list_tests       list the benchmarks, run none\n"
-        "  --benchmark_min_time=SECONDS time per benchmark (default here 0.3)\n"
-        "  --benchmark_repetitions=N    --benchmark_format=console|json|csv  --benchmark_out=FILE\n"
-        "An argument it does not know exits with status 2.");
-    return {command, [command] { return runMicrobench(command->remaining()); }};
-}
-
 }  // namespace raster::tools
+
+// build/bin/raster-microbench, which `raster microbench` runs with its arguments
+// (microbench_command.cpp).
+int main(int argc, char** argv) {
+    try {
+        return raster::tools::runMicrobench(std::vector<std::string>(argv + 1, argv + argc));
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "raster microbench: %s\n", e.what());
+        return 1;
+    }
+}
