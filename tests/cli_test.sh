@@ -154,7 +154,8 @@ helps() {
     grep -qF -- "$option" "$tmp/out" || fail "raster $command --help does not list $option"
   done
 }
-helps bench --width --height --count --cubes --fog --texture --frames --threads --out --reference --plain --no-error
+helps bench --width --height --count --cubes --fog --texture --frames --threads --out --reference --plain --no-error \
+  --turbulence particles-sim
 helps render --out-dir --width --height --reference --plain --view --list
 helps trace --stats --pixel --json --draw --limit --width --height --count --cubes --fog --threads --reference --plain
 helps view --size --count --cubes --fog --threads --reference --plain --headless --script --screenshot-dir \
@@ -190,6 +191,13 @@ read -r max within <<<"$(sed 's/.*max_diff=\([0-9]*\) within_1=\(.*\)/\1 \2/' <<
 ((max <= 255)) || fail "max_diff $max is more than 255: $error"
 if ((max <= 1)); then [[ $within == 1.000000 ]] || fail "max_diff $max but not every pixel within 1: $error"; fi
 if ((max == 0)); then [[ $error == *mean_abs=0.0000* ]] || fail "max_diff 0 but a mean difference: $error"; fi
+# The particle simulation alone: --count particles, all alive, stepped --frames times.
+run 0 bench particles-sim --count 5000 --frames 3 --threads 2 --turbulence
+grep -q '^threads=2 alive=5000 ' "$tmp/out" || fail "bench particles-sim printed: $(cat "$tmp/out")"
+grep -q '^raster particles-sim count=5000 turbulence=1 ms_per_step_median=[0-9.]* steps=3$' "$tmp/out" ||
+  fail "bench particles-sim printed: $(cat "$tmp/out")"
+run 1 bench particles-sim --count 0
+says "particles-sim needs --count of at least 1"
 run 0 trace particles --count 20 --width 64 --height 36 --pixel 32,18 --json --threads 1
 grep -q '^{"pixel":\[32,18\]' "$tmp/out" || fail "trace --pixel 32,18 --json printed: $(head -c 200 "$tmp/out")"
 run 0 render --list

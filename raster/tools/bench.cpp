@@ -1,6 +1,8 @@
-// raster bench particles|fog: renders a benchmark scene of SCENES.md K times and prints the median
-// frame time, in the one-line format ../shared/anchors/compare.sh reads, after the fast path's
+// raster bench particles|fog|<scene>: renders a benchmark scene of SCENES.md K times and prints the
+// median frame time, in the one-line format ../shared/anchors/compare.sh reads, after the fast path's
 // error against the reference pipeline.
+// raster bench particles-sim: times K fixed steps of the particle simulation alone
+// (particle_workload.hpp) and prints the median step time.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -12,8 +14,11 @@
 
 #include "commands.hpp"
 #include "options.hpp"
+#include "particle_workload.hpp"
 #include "raster/image_compare.hpp"
+#include "raster/particles.hpp"
 #include "raster/scenes.hpp"
+#include "raster/thread_pool.hpp"
 
 namespace raster::tools {
 namespace {
@@ -24,9 +29,37 @@ struct BenchArgs {
     uint32_t frames = 20, threads = 0;
     std::string out;
     bool reference = false, plain = false, noError = false;
+    bool turbulence = false;    // particles-sim: add curl-noise turbulence
+    bool countGiven = false;    // particles-sim: --count on the command line (else 10⁶)
 };
 
+constexpr const char* kParticlesSim = "particles-sim";
+
+// One step of the simulation K times after the burst's step (all particles born) and one more
+// warm-up step; the median is what issue #33's goals name.
+int runParticlesSim(const BenchArgs& args) {
+    const uint32_t count = args.countGiven ? args.options.count : 1'000'000;
+    RASTER_REQUIRE(count > 0, InvalidArgument, "particles-sim needs --count of at least 1");
+    ThreadPool pool(args.threads);
+    ParticleSystem system(particleWorkload(count, args.turbulence), &pool);
+    system.step();
+    system.step();
+    std::vector<double> ms;
+    for (uint32_t k = 0; k < args.frames; ++k) {
+        const auto t0 = std::chrono::steady_clock::now();
+        system.step();
+        ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    }
+    std::sort(ms.begin(), ms.end());
+    std::printf("threads=%u alive=%u min_ms=%.3f max_ms=%.3f\n", pool.size(), system.aliveCount(),
+                ms.front(), ms.back());
+    std::printf("raster particles-sim count=%u turbulence=%d ms_per_step_median=%.3f steps=%u\n", count,
+                int(args.turbulence), ms[ms.size() / 2], args.frames);
+    return 0;
+}
+
 int runBench(const BenchArgs& args) {
+    if (args.scene == kParticlesSim) return runParticlesSim(args);
     const SceneOptions& options = args.options;
     const uint32_t frames = args.frames, threads = args.threads;
     std::unique_ptr<Scene> scene = makeScene(args.scene, options);
@@ -78,7 +111,11 @@ int runBench(const BenchArgs& args) {
 Command addBench(CLI::App& app) {
     CLI::App* command = addCommand(app, "bench", "time a benchmark scene of SCENES.md");
     auto args = std::make_shared<BenchArgs>();
-    addSceneName(*command, args->scene)->required();
+    std::vector<std::string> names = sceneNames();
+    names.push_back(kParticlesSim);
+    command->add_option("scene", args->scene, "particles, fog, a lab (raster render --list), or particles-sim")
+        ->check(CLI::IsMember(names))
+        ->required();
     addSizeOptions(*command, args->options);
     addContentOptions(*command, args->options);
     command->add_option("--texture", args->options.texture, "particles: a PNG instead of the generated fire");
@@ -89,10 +126,18 @@ Command addBench(CLI::App& app) {
     command->add_flag("--plain", args->plain,
                       "every primitive through the plain path (fill/quads.hpp): for stepping in a debugger");
     command->add_flag("--no-error", args->noError, "skip the error against the reference pipeline");
+    command->add_flag("--turbulence", args->turbulence, "particles-sim: add curl-noise turbulence");
     command->footer(
         "Prints the fast pipeline's error against the reference pipeline (skip with --no-error), then\n"
-        "'raster <scene> <W>x<H> ms_per_frame_median=<t> frames=<K>'.");
-    return {command, [args] { return runBench(*args); }};
+        "'raster <scene> <W>x<H> ms_per_frame_median=<t> frames=<K>'.\n"
+        "particles-sim times --frames steps of the particle simulation alone (--count particles, default\n"
+        "1000000, all alive; gravity, wind and drag, and curl noise with --turbulence), then prints\n"
+        "'raster particles-sim count=<N> turbulence=<0|1> ms_per_step_median=<t> steps=<K>'.");
+    CLI::Option* count = command->get_option("--count");
+    return {command, [args, count] {
+                args->countGiven = count->count() > 0;
+                return runBench(*args);
+            }};
 }
 
 }  // namespace raster::tools

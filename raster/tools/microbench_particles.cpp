@@ -12,6 +12,7 @@
 #include <random>
 #include <vector>
 
+#include "particle_workload.hpp"
 #include "raster/particle_sort.hpp"
 #include "raster/particles.hpp"
 #include "raster/thread_pool.hpp"
@@ -21,24 +22,9 @@ namespace {
 
 constexpr uint32_t kCount = 1000000;
 
-// 10⁶ particles alive for the whole run: one burst from a box, long lives, spread velocities.
-ParticleSystemDesc millionDesc(bool turbulence) {
-    Emitter box = Emitter::box({0, 1, 0}, {5, 1, 5});
-    box.bursts = {{0.0f, kCount, 0.0f}};
-    box.velocity = {{0, 1, 0}, 1.0f, 0.5f, 2.0f};
-    box.lifespanMin = box.lifespanMax = 1e6f;
-    ParticleSystemDesc d;
-    d.maxParticles = kCount;
-    d.seed = 1;
-    d.emitters = {box};
-    d.effectors = {Gravity{}, Wind{{2, 0, 1}, 0.5f}, Drag{0.1f}};
-    if (turbulence) d.effectors.push_back(Turbulence{1.0f, 0.7f, {0, 0.3f, 0}, 0.0f, 0});
-    return d;
-}
-
 void stepMillion(benchmark::State& state, bool turbulence) {
     ThreadPool pool(unsigned(state.range(0)));
-    ParticleSystem system(millionDesc(turbulence), &pool);
+    ParticleSystem system(particleWorkload(kCount, turbulence), &pool);
     system.step();  // the burst: all 10⁶ born
     for (auto _ : state) system.step();
     state.SetItemsProcessed(int64_t(state.iterations()) * kCount);
@@ -50,7 +36,7 @@ void BM_StepWithCurlNoise(benchmark::State& state) { stepMillion(state, true); }
 
 void BM_WriteVertices(benchmark::State& state) {
     ThreadPool pool(unsigned(state.range(0)));
-    ParticleSystem system(millionDesc(false), &pool);
+    ParticleSystem system(particleWorkload(kCount, false), &pool);
     system.step();
     std::vector<Particle> vertices(system.aliveCount());
     for (auto _ : state) benchmark::DoNotOptimize(system.writeVertices(vertices));
