@@ -7,6 +7,9 @@
 #include <cstdint>
 #include <new>
 #include <string>
+#include <typeinfo>
+
+#include <glm/glm.hpp>
 
 namespace raster {
 namespace {
@@ -54,6 +57,12 @@ TEST(Memory, BadAllocBecomesAnErrorNamingWhatAndHowMuch) {
                   "out of memory: cannot allocate 1.0 GiB (1073741824 bytes) for a render target of size 16384x16384");
     }
     EXPECT_EQ(allocateOrThrow("nothing", 0, [] { return 7; }), 7);  // what succeeds passes through
+}
+
+TEST(Demangle, NamesTypesAsTheSourceDoesAndKeepsWhatItCannotRead) {
+    EXPECT_EQ(demangle(typeid(glm::vec3).name()), "glm::vec<3, float, (glm::qualifier)0>");
+    EXPECT_EQ(demangle(typeid(Error).name()), "raster::Error");
+    EXPECT_EQ(demangle("not a mangled name"), "not a mangled name");
 }
 
 }  // namespace

@@ -36,11 +36,11 @@ cp "$dir/fog.png" "$dir/fog-before.png"
 (ulimit -v 2000000 && "$raster" render fog --width 16384 --height 16384 --out-dir "$dir") >/dev/null 2>&1
 cmp -s "$dir/fog.png" "$dir/fog-before.png" || fail "a failed render changed the fog.png written before"
 
-# 50 million particles under 8 GB: the particles' arrays do not fit beside the frame.
-(ulimit -v 8000000 && "$raster" bench particles --count 50000000 --frames 1 --no-error) >"$dir/out.txt" 2>"$dir/err.txt"
+# 50 million particles under 4 GB: the particles' arrays do not fit beside the frame.
+(ulimit -v 4000000 && "$raster" bench particles --count 50000000 --frames 1 --no-error) >"$dir/out.txt" 2>"$dir/err.txt"
 status=$?
 cat "$dir/err.txt"
-[[ $status == 1 ]] || fail "bench particles --count 50000000 under 8 GB exited $status, not 1"
+[[ $status == 1 ]] || fail "bench particles --count 50000000 under 4 GB exited $status, not 1"
 grep -q "out of memory" "$dir/err.txt" || fail "the message does not say out of memory"
 grep -qE "[0-9.]+ (MiB|GiB) \([0-9]+ bytes\)" "$dir/err.txt" || fail "the message does not say how much"
 echo "oom_cli: all checks passed"

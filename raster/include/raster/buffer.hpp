@@ -60,7 +60,7 @@ private:
     template <class T>
     void allocate(size_t count) {
         allocateOrThrow("a vertex buffer of " + std::to_string(count) + " × " + std::to_string(sizeof(T)) +
-                            "-byte " + typeid(T).name(),
+                            "-byte " + demangle(typeid(T).name()),
                         byteCount(count, sizeof(T)), [&] { bytes_.resize(count * sizeof(T)); });
     }
 

@@ -40,6 +40,10 @@ private:
 
 [[noreturn]] void checkFailed(const char* file, int line, const char* condition);
 
+// The readable name of a mangled type name (typeid(T).name()), for error messages; the mangled name
+// itself where it cannot be demangled.
+std::string demangle(const char* mangled);
+
 // ---- Memory: large allocations fail as Error(OutOfMemory), never as std::bad_alloc ----
 
 // count × size in bytes, UINT64_MAX if the product does not fit (so it fails every limit).

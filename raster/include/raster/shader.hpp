@@ -29,6 +29,7 @@
 
 #include <glm/glm.hpp>
 
+#include "raster/check.hpp"
 #include "raster/simd.hpp"
 
 namespace raster {
@@ -112,8 +113,7 @@ using LineStream = OutputStream<V, N, PrimitiveKind::Line>;
 template <class V, int N>
 using TriangleStream = OutputStream<V, N, PrimitiveKind::Triangle>;
 
-// The readable name of a type (demangled), for error messages.
-std::string demangle(const char* mangled);
+// The readable name of a type (demangled: check.hpp's demangle), for error messages.
 template <class T>
 std::string typeName() {
     return demangle(typeid(T).name());
