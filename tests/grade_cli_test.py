@@ -15,20 +15,29 @@ import subprocess
 import sys
 import time
 
-PARTICLES = {"small_start", "close_few"}  # tests/grader/root's scenes that draw particles
-# case: (scenes lost, verdict of those, words that must be in their output)
+PARTICLES = {"small_start", "close_few"}  # tests/grader/root's billboards scenes that draw particles
+BILLBOARDS = {"small_start", "no_particles", "close_few"}
+RASTERIZER = {"small_start", "turned", "tiny_image"}
+# The rasterizer scenes where a pixel centre lies exactly on an edge (all but `turned`, whose camera
+# turns every vertex off the pixel-centre lattice): where the opposite tie-break shows.
+ON_EDGE = {"small_start", "tiny_image"}
+RASTERIZER_STAGE = "rasterizer: "
+# case: (lab, scenes lost, verdict of those, words that must be in their output)
 CASES = {
-    "wrong_blend": (PARTICLES, "fail", ["blend: ", "your destination factor is Blend::InvSrcAlpha where the solution's is Blend::One"]),
-    "depth_write_on": (PARTICLES, "fail", ["depth test: ", "is depth write on?", "your depth write is on where the solution's is off"]),
-    "offset_after_w": (PARTICLES, "fail", ["geometry shader: ", "geometry shader output", "differs by"]),
-    "gs_drops_corner": (PARTICLES, "fail", ["geometry shader: ", "the geometry shader emitted 1 triangle (3 vertices)", "(solution: 2 triangles, 4 vertices)"]),
-    "crash": (PARTICLES, "error", ["crashed: ", "SIGSEGV"]),
-    "infinite_loop": (PARTICLES, "error", ["timed out: "]),
-    "unbounded_alloc": (PARTICLES, "error", ["ran out of memory: "]),
-    "fork_bomb": (PARTICLES, "error", ["too many processes: "]),
-    "snoop": (set(), "pass", []),
-    "alternative": (set(), "pass", []),
+    "wrong_blend": ("billboards", PARTICLES, "fail", ["blend: ", "your destination factor is Blend::InvSrcAlpha where the solution's is Blend::One"]),
+    "depth_write_on": ("billboards", PARTICLES, "fail", ["depth test: ", "is depth write on?", "your depth write is on where the solution's is off"]),
+    "offset_after_w": ("billboards", PARTICLES, "fail", ["geometry shader: ", "geometry shader output", "differs by"]),
+    "gs_drops_corner": ("billboards", PARTICLES, "fail", ["geometry shader: ", "the geometry shader emitted 1 triangle (3 vertices)", "(solution: 2 triangles, 4 vertices)"]),
+    "half_pixel_coverage": ("rasterizer", RASTERIZER, "fail", [RASTERIZER_STAGE, "is coverage tested at the pixel's centre"]),
+    "bottom_right_rule": ("rasterizer", ON_EDGE, "fail", [RASTERIZER_STAGE, "lies exactly on the triangle's edge", "check the top-left rule"]),
+    "crash": ("billboards", PARTICLES, "error", ["crashed: ", "SIGSEGV"]),
+    "infinite_loop": ("billboards", PARTICLES, "error", ["timed out: "]),
+    "unbounded_alloc": ("billboards", PARTICLES, "error", ["ran out of memory: "]),
+    "fork_bomb": ("billboards", PARTICLES, "error", ["too many processes: "]),
+    "snoop": ("billboards", set(), "pass", []),
+    "alternative": ("billboards", set(), "pass", []),
 }
+SCENES = {"billboards": BILLBOARDS, "rasterizer": RASTERIZER}
 
 
 def grade(raster, submission, out, extra, cwd):
@@ -70,18 +79,18 @@ def check_real(raster, source, out, case):
 
 
 def check_case(raster, source, out, case):
-    lost, verdict, words = CASES[case]
+    lab, lost, verdict, words = CASES[case]
     submission = os.path.join(source, "tests", "grader", case)
     root = os.path.join(source, "tests", "grader", "root")
     # 8 s keeps infinite_loop short; unbounded_alloc gets 30 so that on a loaded machine its 768 MiB run
     # out before the clock does (it took 8.8 s once with four builds sharing two cores).
     seconds = "30" if case == "unbounded_alloc" else "8"
-    extra = ["--grading-root", root, "--render-seconds", seconds, "--render-memory", "768"]
+    extra = ["--grading-root", root, "--lab", lab, "--render-seconds", seconds, "--render-memory", "768"]
     results = grade(raster, submission, os.path.abspath(out), extra, source)
     errors = []
     by_scene = scenes(results)
-    if set(by_scene) != {"small_start", "no_particles", "close_few"}:
-        errors.append(f"graded {sorted(by_scene)}, not the three scenes of tests/grader/root")
+    if set(by_scene) != SCENES[lab]:
+        errors.append(f"graded {sorted(by_scene)}, not the three {lab} scenes of tests/grader/root")
     for name, t in by_scene.items():
         status = t["extra_data"]["verdict"]
         if name in lost:

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "grade/diagnose.hpp"
 #include "grade/trace_json.hpp"
@@ -158,6 +159,78 @@ TEST(GradeDiagnose, PixelShaderOutputIsNamed) {
         << d.headline;
 }
 
+// One draw of one triangle (screen positions in pixels, on the 16.8 grid) and, when `covered`, its
+// fragment at pixel (kX, kY): a coverage difference, the same geometry on both sides.
+Trace coverageFrame(const glm::vec2 (&corners)[3], bool covered, const RasterizerState& rs = {}) {
+    Trace trace{TraceOptions{.pixels = {kX, kY, kX, kY}}};
+    TraceDraw& d = trace.beginDraw(16, 16);
+    d.draw = 0;
+    d.vertexShader = "VsPassThrough", d.pixelShader = "PsColor";
+    d.topology = Topology::TriangleList;
+    d.rasterizer = rs;
+    d.coverageTest = true;
+    TracePrimitive p{};
+    p.primitive = 0, p.kind = PrimitiveKind::Triangle, p.fate = PrimitiveFate::Rasterized, p.vertexCount = 3;
+    for (int k = 0; k < 3; ++k) p.screen[k] = {corners[k].x, corners[k].y, 0.5f, 1};
+    d.primitives.push_back(p);
+    if (covered)
+        trace.addFragments(
+            {{0, 0, kX, kY, 0.5f, NAN, NAN, FragmentFate::Written, true, kFire, kBlack, kFire}});
+    return trace;
+}
+
+TEST(GradeDiagnose, CentreOnAnEdgeNamesTheTopLeftRule) {
+    // Pixel (5, 7)'s centre (5.5, 7.5) lies on the vertical edge x = 5.5, the triangle to its right: a
+    // left edge, so the solution covers it; a bottom-right rule would not.
+    const glm::vec2 corners[3] = {{5.5f, 0}, {5.5f, 16}, {12, 8}};
+    const Trace yours = coverageFrame(corners, false), theirs = coverageFrame(corners, true);
+    const grade::Diagnosis d = grade::diagnosePixel(yours, theirs, kX, kY);
+    EXPECT_EQ(d.stage, DiagnosisStage::Rasterizer) << d.headline;
+    for (const char* words :
+         {"your rasterizer did not cover pixel (5, 7) with primitive 0",
+          "its centre (5.5, 7.5) lies exactly on the triangle's edge from (5.5, 16) to (5.5, 0)",
+          "a left edge, which covers it", "check the top-left rule"})
+        EXPECT_NE(d.headline.find(words), std::string::npos) << d.headline << "\nlacks: " << words;
+    // Not every coverage difference is a tie: a centre well inside, missed, names neither cause.
+    const glm::vec2 wide[3] = {{0, 0}, {16, 0}, {0, 16}};
+    const grade::Diagnosis inside =
+        grade::diagnosePixel(coverageFrame(wide, false), coverageFrame(wide, true), kX, kY);
+    EXPECT_EQ(inside.stage, DiagnosisStage::Rasterizer);
+    EXPECT_EQ(inside.headline.find("top-left"), std::string::npos) << inside.headline;
+    EXPECT_NE(inside.headline.find("compare the rasterizer state"), std::string::npos) << inside.headline;
+}
+
+TEST(GradeDiagnose, CornerInsideCentreOutsideNamesTheHalfPixel) {
+    // The right edge x = 5.25 leaves the centre (5.5, 7.5) outside and the corner (5, 7) inside.
+    const glm::vec2 corners[3] = {{-20, -20}, {5.25f, -20}, {5.25f, 40}};
+    const Trace yours = coverageFrame(corners, true), theirs = coverageFrame(corners, false);
+    const grade::Diagnosis d = grade::diagnosePixel(yours, theirs, kX, kY);
+    EXPECT_EQ(d.stage, DiagnosisStage::Rasterizer) << d.headline;
+    for (const char* words :
+         {"your rasterizer covered pixel (5, 7) with primitive 0 1 time, the solution's 0",
+          "its corner (5, 7) lies inside the triangle, and yours covered the pixel",
+          "is coverage tested at the pixel's centre (x + 0.5, y + 0.5)?"})
+        EXPECT_NE(d.headline.find(words), std::string::npos) << d.headline << "\nlacks: " << words;
+}
+
+TEST(GradeDiagnose, RasterizerStateDifferencesAreListed) {
+    const glm::vec2 corners[3] = {{0, 0}, {16, 0}, {0, 16}};
+    RasterizerState mine;
+    mine.cullMode = CullMode::Back, mine.scissorEnable = true, mine.scissorRight = 8, mine.scissorBottom = 4;
+    RasterizerState solution;
+    solution.cullMode = CullMode::None, solution.depthClipEnable = false;
+    const std::vector<std::string> lines = grade::drawStateDifferences(
+        coverageFrame(corners, false, mine), coverageFrame(corners, true, solution), 0);
+    const std::vector<std::string> expected = {
+        "draw 0 rasterizer: your cull mode is CullMode::Back where the solution's is CullMode::None",
+        "draw 0 rasterizer: your scissor is [0, 8) x [0, 4) where the solution's is off",
+        "draw 0 rasterizer: your depth clip is on where the solution's is off"};
+    EXPECT_EQ(lines, expected);
+    EXPECT_TRUE(grade::drawStateDifferences(coverageFrame(corners, false, mine),
+                                            coverageFrame(corners, true, mine), 0)
+                    .empty());
+}
+
 TEST(GradeDiagnose, TraceJsonReadsBackFieldForField) {
     Frame f = solution();
     const Trace& trace = f.done();
@@ -173,6 +246,27 @@ TEST(GradeDiagnose, TraceJsonReadsBackFieldForField) {
     EXPECT_EQ(back.pixelHistory(kX, kY)[1].depth, 0.4f);
     EXPECT_EQ(back.pixelHistory(kX, kY)[1].fate, FragmentFate::Written);
     EXPECT_EQ(grade::diagnosePixel(back, trace, kX, kY).stage, DiagnosisStage::None);
+}
+
+TEST(GradeDiagnose, TraceJsonReadsBackTheRasterizerState) {
+    RasterizerState rs;
+    rs.fillMode = FillMode::Wireframe, rs.cullMode = CullMode::Front, rs.frontCounterClockwise = true;
+    rs.depthClipEnable = false, rs.scissorEnable = true;
+    rs.scissorLeft = 1, rs.scissorTop = 2, rs.scissorRight = 9, rs.scissorBottom = 11;
+    const glm::vec2 corners[3] = {{0, 0}, {16, 0}, {0, 16}};
+    const Trace trace = coverageFrame(corners, true, rs);
+    const Trace back = grade::traceFromJson(grade::traceToJson(trace), "test");
+    ASSERT_EQ(back.draws().size(), 1u);
+    const RasterizerState& r = back.draws()[0].rasterizer;
+    EXPECT_EQ(r.fillMode, FillMode::Wireframe);
+    EXPECT_EQ(r.cullMode, CullMode::Front);
+    EXPECT_TRUE(r.frontCounterClockwise);
+    EXPECT_FALSE(r.depthClipEnable);
+    EXPECT_TRUE(r.scissorEnable);
+    EXPECT_EQ(glm::ivec4(r.scissorLeft, r.scissorTop, r.scissorRight, r.scissorBottom),
+              glm::ivec4(1, 2, 9, 11));
+    EXPECT_TRUE(back.draws()[0].coverageTest);
+    EXPECT_TRUE(grade::drawStateDifferences(back, trace, 0).empty());
 }
 
 TEST(GradeDiagnose, TraceJsonRefusesForgedFields) {

@@ -3,9 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <vector>
 
 #include "raster/lab.hpp"
 
@@ -86,6 +88,92 @@ TEST(Labs, BillboardsAsHandedOutDrawsOnlyTheOccluder) {
     const RenderTarget lab = renderScene("billboards", o);
     EXPECT_EQ(differingPixels(lab, renderScene("particles", {.width = 320, .height = 180, .count = 0})), 0u);
     EXPECT_GT(differingPixels(lab, renderScene("billboards@solution", o)), size_t(320 * 180 / 10))
+        << "the picture a student starts from must be visibly wrong";
+}
+
+// ---- rasterizer: the student's coverage test ----
+
+RenderTarget renderScene(const std::string& name, const SceneOptions& options, unsigned threads) {
+    Context context({.threads = threads});
+    RenderTarget color(options.width, options.height);
+    DepthTarget depth(options.width, options.height);
+    makeScene(name, options)->render(context, color, depth);
+    return color;
+}
+
+// The lab's triangles drawn as the lab draws them, through the teaching pipeline, with the library's
+// own coverage rule (no coverage test set).
+struct PassThroughIn {
+    glm::vec4 position, color;
+    RASTER_INPUT_SIGNATURE(PassThroughIn, RASTER_INPUT(position, "POSITION", 0),
+                           RASTER_INPUT(color, "COLOR", 0))
+};
+struct PassThroughOut {
+    glm::vec4 position, color;
+};
+struct VsPassThrough {
+    PassThroughOut operator()(const PassThroughIn& in) const { return {in.position, in.color}; }
+};
+struct PsPassThrough {
+    glm::vec4 operator()(const PassThroughOut& in) const { return in.color; }
+};
+RenderTarget libraryCoverage(const SceneOptions& o) {
+    const CoverageSceneData data(o);
+    Context context;
+    RenderTarget color(o.width, o.height);
+    DepthTarget depth(o.width, o.height);
+    beginSceneFrame(context, color, depth);
+    data.bind(context);
+    context.draw(VsPassThrough{}, PsPassThrough{}, data.vertexCount);
+    return color;
+}
+
+// The options of the lab's graded scenes (labs/ and solutions/rasterizer/grading.json) and more:
+// other sizes, counts (the fan's spokes, the lattice's cells, the small triangles) and cameras.
+std::vector<SceneOptions> adversarialSets() {
+    const auto turned = [](float degrees, float distance) {
+        const float a = glm::radians(degrees);
+        return SceneCamera{{distance * std::sin(a), 0.3f, distance * std::cos(a)}, {0, 0.3f, 0}};
+    };
+    return {{.width = 1280, .height = 720, .count = 300},
+            {.width = 320, .height = 180, .count = 50},
+            {.width = 960, .height = 540, .count = 1234},
+            {.width = 800, .height = 600, .count = 500, .camera = turned(30, 1)},
+            {.width = 640, .height = 480, .count = 2000, .camera = turned(0, 0.37f)},
+            {.width = 96, .height = 64, .count = 41},
+            {.width = 333, .height = 257, .count = 7, .camera = turned(-73, 2.5f)},
+            {.width = 64, .height = 500, .count = 3, .camera = turned(90, 0.8f)}};
+}
+
+// The solution's coverage test is the library's rule, written as a student would: the same image,
+// bit for bit, on every set, at 1, 2 and 8 threads.
+TEST(Labs, RasterizerSolutionIsTheLibrarysCoverageOnEveryAdversarialSet) {
+    for (const SceneOptions& o : adversarialSets()) {
+        const RenderTarget library = libraryCoverage(o);
+        for (unsigned threads : {1u, 2u, 8u})
+            EXPECT_EQ(differingPixels(renderScene("rasterizer@solution", o, threads), library), 0u)
+                << o.width << "x" << o.height << " count " << o.count << ", " << threads << " threads";
+    }
+    // Not trivially: the sets cover most of the image and differ from the handed-out lab.
+    const SceneOptions o = adversarialSets()[1];
+    RenderTarget black(o.width, o.height);
+    black.clear({0, 0, 0, 1});  // as beginSceneFrame clears
+    EXPECT_GT(differingPixels(libraryCoverage(o), black), size_t(o.width * o.height / 2));
+}
+
+// As handed out, every triangle covers its whole bounding box. Skipped once a student has started.
+TEST(Labs, RasterizerAsHandedOutDiffersFromTheSolution) {
+    std::ifstream in(std::string(RASTER_SOURCE_DIR) + "/labs/rasterizer/rasterizer.cpp");
+    ASSERT_TRUE(in) << "labs/rasterizer/rasterizer.cpp is missing";
+    const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    for (const char* start :
+         {"    return 0;\n}", "    return true;\n}", "std::nearbyint(pixels * 2.0)) * 128"})
+        if (text.find(start) == std::string::npos)
+            GTEST_SKIP() << "the lab has been edited (no '" << start << "')";
+    ASSERT_NE(findRegisteredScene("rasterizer@solution"), nullptr);
+    const SceneOptions o = adversarialSets()[1];
+    EXPECT_GT(differingPixels(renderScene("rasterizer", o), renderScene("rasterizer@solution", o)),
+              size_t(o.width * o.height / 10))
         << "the picture a student starts from must be visibly wrong";
 }
 

@@ -6,6 +6,7 @@
 #define RASTER_DRAWS_GENERIC_ONLY 1
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <functional>
 #include <optional>
@@ -274,6 +275,144 @@ TEST(TeachingPipeline, TraceRecordsTheLabsStructs) {
         EXPECT_EQ(b.fragments()[i].fate, a.fragments()[i].fate);
         EXPECT_EQ(b.fragments()[i].colorAfter, a.fragments()[i].colorAfter);
     }
+}
+
+// ---- The rasterizer lab's coverage test (Context::setCoverageTest) ----
+
+struct ClipColorIn {
+    glm::vec4 position, color;
+    RASTER_INPUT_SIGNATURE(ClipColorIn, RASTER_INPUT(position, "POSITION", 0),
+                           RASTER_INPUT(color, "COLOR", 0))
+};
+struct ClipColorVertex {
+    glm::vec4 position, color;
+};
+struct VsClipColor {
+    ClipColorVertex operator()(const ClipColorIn& in) const { return {in.position, in.color}; }
+};
+struct PsClipColor {
+    glm::vec4 operator()(const ClipColorVertex& in) const { return in.color; }
+};
+
+// The rasterizer lab's triangles (CoverageSceneData) through `path`, with `test` set on the context.
+RenderTarget coverageScene(Path path, CoverageTest test, const SceneOptions& o, unsigned threads = 0) {
+    const CoverageSceneData data(o);
+    RenderTarget color(o.width, o.height);
+    DepthTarget depth(o.width, o.height);
+    Context ctx({.threads = threads});
+    beginSceneFrame(ctx, color, depth);
+    data.bind(ctx);
+    ctx.setCoverageTest(test);
+    drawThrough(path, ctx, VsClipColor{}, NoGeometryShader{}, PsClipColor{}, data.vertexCount);
+    return color;
+}
+
+TEST(CoverageTest, TheLibrarysRuleAsALabsTestGivesTheLibrarysImage) {
+    const SceneCamera turned{{0.5f, 0.1f, 0.8660254f}, {0, 0, 0}};
+    for (const SceneOptions& o : {SceneOptions{.width = 320, .height = 180, .count = 60},
+                                  SceneOptions{.width = 200, .height = 150, .count = 33, .camera = turned}}) {
+        const RenderTarget library = coverageScene(Path::Teaching, nullptr, o);
+        EXPECT_TRUE(coverageScene(Path::Teaching, &coversPixelCentre, o, 1) == library) << o.width;
+        EXPECT_TRUE(coverageScene(Path::Teaching, &coversPixelCentre, o, 8) == library) << o.width;
+        EXPECT_TRUE(coverageScene(Path::Template, nullptr, o) == library) << o.width;
+    }
+}
+
+// The library's rule with the opposite tie-break: a centre on a bottom or right edge is inside.
+bool bottomRightRule(const CoverageTriangle& tri, int32_t px, int32_t py) {
+    const CoverageTriangle mirrored = {{-tri.x[0], -tri.x[1], -tri.x[2]}, {-tri.y[0], -tri.y[1], -tri.y[2]}};
+    // Mirrored through the origin, a bottom edge becomes a top one and a right edge a left one;
+    // pixel (px, py)'s centre becomes pixel (−px − 1, −py − 1)'s.
+    return coversPixelCentre(mirrored, -px - 1, -py - 1);
+}
+bool everyCentre(const CoverageTriangle&, int32_t, int32_t) {
+    return true;
+}
+
+// One triangle (window positions in pixels) drawn opaque white on black, 24×16, through `test`.
+RenderTarget oneTriangle(const std::array<glm::dvec2, 3>& window, CoverageTest test,
+                         Path path = Path::Teaching) {
+    std::vector<ClipColorIn> vertices;
+    for (const glm::dvec2& w : window)
+        vertices.push_back({glm::vec4(float(w.x / 12 - 1), float(1 - w.y / 8), 0.5f, 1), glm::vec4(1)});
+    const InputElementDesc desc[] = {{"POSITION", 0, Format::R32G32B32A32_FLOAT, 0, 0},
+                                     {"COLOR", 0, Format::R32G32B32A32_FLOAT, 0, 16}};
+    const InputLayout layout(desc);
+    const VertexBuffer vb = VertexBuffer::create(vertices);
+    RenderTarget color(24, 16);
+    DepthTarget depth(24, 16);
+    Context ctx;
+    beginSceneFrame(ctx, color, depth);
+    ctx.setInputLayout(&layout);
+    ctx.setVertexBuffer(0, &vb);
+    ctx.setPrimitiveTopology(Topology::TriangleList);
+    ctx.setCoverageTest(test);
+    drawThrough(path, ctx, VsClipColor{}, NoGeometryShader{}, PsClipColor{}, 3);
+    return color;
+}
+
+// The pixels `test` says a triangle covers, as the pipeline gives the test the triangle.
+std::vector<bool> expectedCoverage(const std::array<glm::dvec2, 3>& window, CoverageTest test) {
+    CoverageTriangle tri;
+    for (int k = 0; k < 3; ++k) tri.x[k] = window[k].x, tri.y[k] = window[k].y;
+    // Only centres inside the snapped box are asked.
+    double x0 = 1e9, x1 = -1e9, y0 = 1e9, y1 = -1e9;
+    for (const glm::dvec2& w : window)
+        x0 = std::min(x0, w.x), x1 = std::max(x1, w.x), y0 = std::min(y0, w.y), y1 = std::max(y1, w.y);
+    std::vector<bool> out(24 * 16);
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 24; ++x)
+            out[y * 24 + x] =
+                x + 0.5 >= x0 && x + 0.5 <= x1 && y + 0.5 >= y0 && y + 0.5 <= y1 && test(tri, x, y);
+    return out;
+}
+
+TEST(CoverageTest, ALabsTestDecidesExactlyThePixelsItCovers) {
+    // Windows positions on the 1/256 grid (exact after the float clip coordinates and the snap):
+    // edges through pixel centres in both windings, a sliver, a triangle between centres.
+    const std::vector<std::array<glm::dvec2, 3>> triangles = {
+        {{{2.5, 2.5}, {20.5, 2.5}, {2.5, 12.5}}},     {{{2.5, 2.5}, {2.5, 12.5}, {20.5, 2.5}}},
+        {{{20.5, 2.5}, {20.5, 12.5}, {2.5, 12.5}}},   {{{4.5, 1.5}, {18.5, 14.5}, {4.75, 1.5}}},
+        {{{3.25, 3.25}, {9.75, 3.5}, {6.0, 11.625}}}, {{{0.5, 0.5}, {23.5, 15.5}, {0.5, 15.5}}}};
+    for (size_t i = 0; i < triangles.size(); ++i) {
+        const auto& tri = triangles[i];
+        EXPECT_TRUE(oneTriangle(tri, &coversPixelCentre) == oneTriangle(tri, nullptr)) << "triangle " << i;
+        for (CoverageTest test : {&coversPixelCentre, &bottomRightRule, &everyCentre}) {
+            const RenderTarget image = oneTriangle(tri, test);
+            const std::vector<bool> expected = expectedCoverage(tri, test);
+            size_t wrong = 0;
+            for (size_t p = 0; p < expected.size(); ++p)
+                wrong += (image.rgba8()[4 * p] == 255) != expected[p];
+            EXPECT_EQ(wrong, 0u) << "triangle " << i;
+        }
+        // The template pipeline's draws ignore a coverage test.
+        EXPECT_TRUE(oneTriangle(tri, &everyCentre, Path::Template) == oneTriangle(tri, nullptr))
+            << "triangle " << i;
+    }
+    // The opposite tie-break differs where a centre lies on an edge: on all three triangles whose
+    // edges run through pixel centres.
+    for (size_t i : {0u, 1u, 2u})
+        EXPECT_FALSE(oneTriangle(triangles[i], &bottomRightRule) == oneTriangle(triangles[i], nullptr)) << i;
+}
+
+TEST(CoverageTest, TheTraceSaysALabsTestDecided) {
+    Trace trace;
+    const SceneOptions o{.width = 64, .height = 48, .count = 5};
+    const CoverageSceneData data(o);
+    RenderTarget color(o.width, o.height);
+    DepthTarget depth(o.width, o.height);
+    Context ctx;
+    ctx.setTrace(&trace);
+    beginSceneFrame(ctx, color, depth);
+    data.bind(ctx);
+    ctx.setCoverageTest(&coversPixelCentre);
+    drawThrough(Path::Teaching, ctx, VsClipColor{}, NoGeometryShader{}, PsClipColor{}, data.vertexCount);
+    ctx.setCoverageTest(nullptr);
+    drawThrough(Path::Teaching, ctx, VsClipColor{}, NoGeometryShader{}, PsClipColor{}, data.vertexCount);
+    ASSERT_EQ(trace.draws().size(), 2u);
+    EXPECT_TRUE(trace.draws()[0].coverageTest);
+    EXPECT_FALSE(trace.draws()[1].coverageTest);
+    EXPECT_NE(rasterizerSummary(trace.draws()[0]).find(", coverage: the lab's test"), std::string::npos);
 }
 
 }  // namespace

@@ -352,6 +352,36 @@ TEST(TracePixelHistory, TextAndJsonListTheFragments) {
     EXPECT_EQ(pixelHistoryJson(trace, 7, 7), "{\"pixel\":[7,7],\"truncated\":false,\"fragments\":[]}\n");
 }
 
+// Each draw's rasterizer state is in its record, in the pixel history's text and JSON and in the
+// draw's text: next to its blend and depth state.
+TEST(TracePixelHistory, RecordsTheDrawsRasterizerState) {
+    Target8 t;
+    Trace trace({.pixels = {2, 1, 2, 1}});
+    t.ctx.setTrace(&trace);
+    RasterizerState rs;
+    rs.cullMode = CullMode::Front, rs.frontCounterClockwise = true, rs.depthClipEnable = false;
+    rs.scissorEnable = true, rs.scissorRight = 8, rs.scissorBottom = 4;
+    t.ctx.setRasterizerState(rs);
+    // Clockwise on screen: back-facing under frontCounterClockwise, kept by CullMode::Front.
+    t.draw(PsConstant{}, {at(0, 0, 0.5f), at(8, 0, 0.5f), at(0, 8, 0.5f)});
+    ASSERT_EQ(trace.draws().size(), 1u);
+    const RasterizerState& recorded = trace.draws()[0].rasterizer;
+    EXPECT_EQ(recorded.cullMode, CullMode::Front);
+    EXPECT_TRUE(recorded.frontCounterClockwise);
+    EXPECT_FALSE(recorded.depthClipEnable);
+    EXPECT_EQ(recorded.scissorBottom, 4);
+    EXPECT_FALSE(trace.draws()[0].coverageTest);
+    const std::string line =
+        "rasterizer: cull Front, fill Solid, front counter-clockwise, scissor [0, 8) x [0, 4), depth clip "
+        "off";
+    EXPECT_EQ(rasterizerSummary(trace.draws()[0]), line);
+    const std::string text = formatPixelHistory(trace, 2, 1);
+    EXPECT_NE(text.find("pixel (2, 1): 1 fragment\n"), std::string::npos) << text;
+    EXPECT_NE(text.find("\n  " + line + "\n"), std::string::npos) << text;
+    EXPECT_NE(pixelHistoryJson(trace, 2, 1).find("\"rasterizer\":\"" + line + "\""), std::string::npos);
+    EXPECT_NE(formatDraw(trace.draws()[0], 4).find("\n" + line + "\n"), std::string::npos);
+}
+
 // pixelHistoryJson escapes what JSON requires in names (a shader's type name is the compiler's
 // text): quotes, backslashes and control characters; bytes that are not UTF-8 become U+FFFD. The
 // output parses back to the same names and numbers, fields in the documented order.
@@ -427,7 +457,7 @@ TEST(TracePixelHistory, JsonEscapesNamesAndParsesBack) {
     for (const auto& [key, value] : written.items()) keys.push_back(key);
     EXPECT_EQ(keys, (std::vector<std::string>{"draw", "primitive", "pixelShader", "depth", "depthBefore",
                                               "depthAfter", "depthTest", "fate", "shaded", "shaderOutput",
-                                              "colorBefore", "colorAfter", "blend"}));
+                                              "colorBefore", "colorAfter", "blend", "rasterizer"}));
     EXPECT_EQ(written["pixelShader"].get<std::string>(), name);
     EXPECT_EQ(written["primitive"], 7);
     EXPECT_EQ(float(written["depth"].get<double>()), 0.1f) << "reads back as the same float";

@@ -126,6 +126,7 @@ Context::DrawPlan Context::plan(int pixel_shader_targets, bool, PrimitiveKind) c
     p.targets = targets_;
     p.targetCount = target_count_;
     p.viewport = ViewportTransform(viewport_);
+    p.binWholeBoxes = coverage_test_ != nullptr;  // read by teaching draws only
     const Viewport& v = viewport_;
     // Pixels whose centres lie in [topLeft, topLeft + size).
     PixelRect clip{int32_t(std::ceil(v.topLeftX - 0.5f)), int32_t(std::ceil(v.topLeftY - 0.5f)),

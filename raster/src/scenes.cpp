@@ -23,6 +23,7 @@ void beginSceneFrame(Context& context, RenderTarget& color, DepthTarget& depth) 
     RasterizerState rs;
     rs.cullMode = CullMode::None;
     context.setRasterizerState(rs);
+    context.setCoverageTest(nullptr);
 }
 
 namespace {

@@ -9,19 +9,29 @@
 
 namespace raster {
 
+namespace {
+// The lab's pixel shader with the context's coverage test (if any) for the fill paths to find.
+TeachingPixelShader withCoverage(const TeachingPixelShader& ps, CoverageTest test, const Viewport& viewport,
+                                 const RasterizerState& rs) {
+    TeachingPixelShader out = ps;
+    out.coverage = {test, ViewportTransform(viewport), rs.frontCounterClockwise};
+    return out;
+}
+}  // namespace
+
 void Context::executeTeaching(const TeachingVertexShader& vs, const TeachingPixelShader& ps,
                               const DrawCall& call) {
-    execute(vs, NoGeometryShader{}, ps, call);
+    execute(vs, NoGeometryShader{}, withCoverage(ps, coverage_test_, viewport_, rasterizer_), call);
 }
 
 void Context::executeTeaching(const TeachingVertexShader& vs, const TeachingPointGeometryShader& gs,
                               const TeachingPixelShader& ps, const DrawCall& call) {
-    execute(vs, gs, ps, call);
+    execute(vs, gs, withCoverage(ps, coverage_test_, viewport_, rasterizer_), call);
 }
 
 void Context::executeTeaching(const TeachingVertexShader& vs, const TeachingTriangleGeometryShader& gs,
                               const TeachingPixelShader& ps, const DrawCall& call) {
-    execute(vs, gs, ps, call);
+    execute(vs, gs, withCoverage(ps, coverage_test_, viewport_, rasterizer_), call);
 }
 
 }  // namespace raster

@@ -126,6 +126,19 @@ const TraceDraw* findDraw(const Trace& trace, uint32_t draw) {
 
 }  // namespace
 
+std::string rasterizerSummary(const TraceDraw& d) {
+    const RasterizerState& r = d.rasterizer;
+    std::string text = "rasterizer: cull " + std::string(name(r.cullMode)) + ", fill " +
+                       std::string(name(r.fillMode)) + ", front " +
+                       (r.frontCounterClockwise ? "counter-clockwise" : "clockwise") + ", scissor ";
+    text += r.scissorEnable
+                ? fmt("[%d, %d) x [%d, %d)", r.scissorLeft, r.scissorRight, r.scissorTop, r.scissorBottom)
+                : std::string("off");
+    text += std::string(", depth clip ") + (r.depthClipEnable ? "on" : "off");
+    if (d.coverageTest) text += ", coverage: the lab's test";
+    return text;
+}
+
 std::string formatPixelHistory(const Trace& trace, int32_t x, int32_t y) {
     const std::vector<TraceFragment> history = trace.pixelHistory(x, y);
     std::ostringstream out;
@@ -141,10 +154,11 @@ std::string formatPixelHistory(const Trace& trace, int32_t x, int32_t y) {
             out << "draw " << f.draw;
             if (d) {
                 out << "  " << d->pixelShader << "  depth "
-                    << (d->depthStencil.depthEnable ? std::string(name(d->depthStencil.depthFunc)) +
-                                                          (d->depthStencil.depthWriteMask ? ", write" : ", no write")
-                                                    : std::string("off"))
-                    << "  " << blendEquation(d->blend.target(0));
+                    << (d->depthStencil.depthEnable
+                            ? std::string(name(d->depthStencil.depthFunc)) +
+                                  (d->depthStencil.depthWriteMask ? ", write" : ", no write")
+                            : std::string("off"))
+                    << "  " << blendEquation(d->blend.target(0)) << "\n  " << rasterizerSummary(*d);
             }
             out << "\n";
             out << "   #  prim      depth     buffer  test         shader output (rgba)                 "
@@ -178,6 +192,7 @@ std::string pixelHistoryJson(const Trace& trace, int32_t x, int32_t y) {
                          {"colorBefore", jsonVec(f.colorBefore)},
                          {"colorAfter", jsonVec(f.colorAfter)}};
         if (d) fragment["blend"] = blendEquation(d->blend.target(0));
+        if (d) fragment["rasterizer"] = rasterizerSummary(*d);
         fragments.push_back(std::move(fragment));
     }
     const Json history = {
@@ -192,6 +207,7 @@ std::string formatDraw(const TraceDraw& d, size_t limit) {
     out << "draw " << d.draw << ": VS " << d.vertexShader;
     if (!d.geometryShader.empty()) out << ", GS " << d.geometryShader;
     out << ", PS " << d.pixelShader << (d.skipped ? "  (skipped by the step limit)" : "") << "\n";
+    out << rasterizerSummary(d) << "\n";
     auto floats = [](const std::vector<float>& v, uint32_t from, uint32_t count) {
         std::string s = "(";
         for (uint32_t i = 0; i < count && from + i < v.size(); ++i) {

@@ -152,6 +152,12 @@ class Context {
     // ---- Rasterizer ----
     void setRasterizerState(const RasterizerState& state) { rasterizer_ = state; }
     void setViewport(const Viewport& viewport) { viewport_ = viewport; }
+    // The rasterizer lab's coverage test (stages/setup.hpp's CoverageTest), or nullptr for the
+    // library's rule: which pixel centres the triangles of the teaching pipeline's draws (a lab's
+    // file, raster/teaching_draw.hpp) cover. The template pipeline's draws ignore it. No D3D11 state:
+    // the lab's way into the rasterizer. beginSceneFrame resets it.
+    void setCoverageTest(CoverageTest test) { coverage_test_ = test; }
+    CoverageTest coverageTest() const { return coverage_test_; }
     // ---- Output merger ----
     void setBlendState(const BlendState& state) { blend_ = state; }
     void setDepthStencilState(const DepthStencilState& state) { depth_stencil_ = state; }
@@ -316,6 +322,7 @@ class Context {
     const IndexBuffer* index_buffer_ = nullptr;
     RasterizerState rasterizer_;
     Viewport viewport_;
+    CoverageTest coverage_test_ = nullptr;
     BlendState blend_;
     DepthStencilState depth_stencil_;
     std::array<RenderTarget*, kMaxRenderTargets> targets_{};

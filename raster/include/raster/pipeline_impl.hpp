@@ -183,8 +183,11 @@ uint32_t Context::runGeometryStages(
     if (chunks.size() < chunk_count) chunks.resize(chunk_count);
     const int k_in = int(assembled.kind);
     // The reference pipeline takes no shortcut: billboards stay two triangles there.
+    // Nor does a teaching draw with a lab's coverage test (teaching_pipeline.hpp), whose triangles it
+    // decides.
     [[maybe_unused]] const bool rectangles =
-        !options_.reference && !options_.plain && rasterizer_.fillMode == FillMode::Solid;
+        !options_.reference && !options_.plain && rasterizer_.fillMode == FillMode::Solid &&
+        !(std::is_same_v<Vertex, TeachingVertex> && coverage_test_ != nullptr);
     pool_->parallelFor(chunk_count, [&](uint32_t c, unsigned) {
         detail::Chunk<Vertex>& chunk = chunks[c];
         chunk.reset(p.grid.count());
@@ -315,6 +318,8 @@ TraceDraw& Context::beginTraceDraw(const VS& vs, const GS& gs, const PS& ps, uin
     d.topology = topology_;
     d.blend = blend_;
     d.depthStencil = depth_stencil_;
+    d.rasterizer = rasterizer_;
+    if constexpr (std::is_same_v<PS, TeachingPixelShader>) d.coverageTest = ps.coverage.test != nullptr;
     const detail::VertexInputDescription input = detail::vertexInputOf(vs);
     for (const ShaderInputField& f : input.signature)
         d.inputFields.push_back(

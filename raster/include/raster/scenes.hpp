@@ -73,8 +73,8 @@ std::string solutionSceneOf(std::string_view name);
 glm::mat4 sceneProjection(const SceneOptions& options);
 glm::mat4 sceneView(const SceneCamera& camera);
 
-// Clears colour to (0,0,0,1) and depth to 1, binds both, sets the whole-target viewport and no
-// culling: how every scene's frame begins (SCENES.md's conventions).
+// Clears colour to (0,0,0,1) and depth to 1, binds both, sets the whole-target viewport, no culling and
+// the library's coverage rule (no coverage test): how every scene's frame begins (SCENES.md's conventions).
 void beginSceneFrame(Context& context, RenderTarget& color, DepthTarget& depth);
 
 // SCENES.md's particle scene as data, for the `particles` scene and the lab that rebuilds it: the
@@ -91,6 +91,32 @@ struct ParticleSceneData {
     VertexBuffer occluder, particles;
     InputLayout layout;
     uint32_t count;
+};
+
+// The rasterizer lab's adversarial triangles (labs/rasterizer/README.md), one TriangleList of
+// `vertexCount` vertices, each POSITION (clip space, w = 1) and COLOR R32G32B32A32_FLOAT, drawn with
+// additive blending so that a pixel covered twice shows brighter and one covered never stays dark:
+//   - two huge triangles sharing a diagonal, reaching past the guard band, behind everything;
+//   - a fan of 8 + 4·(count % 5) triangles about a pixel centre, spokes ending on pixel centres,
+//     windings alternating;
+//   - a lattice of cells of 5 + count % 4 pixels with corners on pixel centres, each cut by a
+//     diagonal into two triangles, windings alternating;
+//   - slivers: 40 wedges under a pixel wide from one apex, and strips half a pixel high whose top
+//     edges run along rows of pixel centres;
+//   - `count` small triangles (at most 50 000) at positions off the 1/256 grid, seeded by count.
+// Positions are placed in pixels and mapped by the camera: a rotation about the image's centre by
+// the eye's azimuth about the target and a zoom by 1 / |eye − target| (the default camera, eye
+// (0, 0, 1) and target the origin, maps nothing: every vertex meant for a pixel centre snaps there).
+struct CoverageSceneData {
+    struct Vertex {
+        glm::vec4 position, color;
+    };
+    explicit CoverageSceneData(const SceneOptions& options);
+    // Binds the layout, the buffer and the triangle list, additive blending and no depth test.
+    void bind(Context& context) const;
+    VertexBuffer triangles;
+    InputLayout layout;
+    uint32_t vertexCount = 0;
 };
 
 // The fire texture of SCENES.md: 64×64 RGBA8, texel (i, j): u = (i+½)/64, v = (j+½)/64,

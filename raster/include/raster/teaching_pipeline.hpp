@@ -37,6 +37,7 @@
 #include "raster/input_layout.hpp"
 #include "raster/render_target.hpp"
 #include "raster/shader.hpp"
+#include "raster/stages/setup.hpp"
 
 namespace raster {
 
@@ -95,11 +96,27 @@ struct TeachingGeometryShader {
     }
 };
 
+// The rasterizer lab's coverage test for one teaching draw (Context::setCoverageTest): when `test` is
+// set, the draw's triangles cover the pixels it says, asked for every pixel centre of each triangle's
+// box (fill/quads.hpp), instead of the library's rule; the triangle given in the draw's vertex order
+// (clockwise unless frontCounterClockwise says the facing was read the other way round) with its
+// window positions computed by `viewport` exactly as setup computes them before snapping.
+// Lines and points keep the library's rules, and so do billboard rectangles (a draw with a
+// coverage test sets none up: each strip is drawn as its two triangles).
+struct TeachingCoverage {
+    CoverageTest test = nullptr;
+    ViewportTransform viewport;
+    bool frontCounterClockwise = false;
+};
+
 struct TeachingPixelShader {
     const void* shader = nullptr;
     void (*run)(const void* shader, const TeachingVertex& in, TeachingColors& out) = nullptr;
     int targets = 1;  // render targets the lab's shader writes
     TeachingShaderInfo info;
+    // Set by Context::executeTeaching from the context's coverage test; the template pipeline's
+    // shaders have no such member, so their fill paths have no such branch (fill/quads.hpp).
+    TeachingCoverage coverage;
 
     TeachingColors operator()(const TeachingVertex& in) const {
         TeachingColors out;

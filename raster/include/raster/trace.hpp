@@ -117,6 +117,9 @@ struct TraceDraw {
     Topology topology;
     BlendState blend;
     DepthStencilState depthStencil;
+    RasterizerState rasterizer;
+    // A lab's coverage test decided the triangles' pixels (Context::setCoverageTest).
+    bool coverageTest = false;
     std::vector<TraceField> inputFields;  // the vertex shader's input signature
     uint32_t vsPosition = 0, gsPosition = 0;  // float offset of SV_Position in outputs
     uint32_t vsFloats = 0, gsFloats = 0;
@@ -170,6 +173,10 @@ private:
 // Text for students and JSON for tools.
 std::string formatPixelHistory(const Trace& trace, int32_t x, int32_t y);
 std::string pixelHistoryJson(const Trace& trace, int32_t x, int32_t y);
+// The draw's rasterizer state in one line: "rasterizer: cull None, fill Solid, front clockwise,
+// scissor off, depth clip on" and, where a lab's coverage test decided its pixels, ", coverage: the
+// lab's test".
+std::string rasterizerSummary(const TraceDraw& draw);
 // A draw's geometry records, at most `limit` of each kind, as text.
 std::string formatDraw(const TraceDraw& draw, size_t limit);
 

@@ -7,6 +7,8 @@
 #include <optional>
 #include <utility>
 
+#include "raster/stages/rasterizer.hpp"
+
 namespace raster::grade {
 namespace {
 
@@ -266,6 +268,81 @@ std::optional<Found> fragmentDifference(const TraceFragment& a, const TraceFragm
 
 using Key = std::pair<uint32_t, uint32_t>;  // (draw, primitive)
 
+// ---- Coverage: one side's primitive covers the pixel, the other's not, from the same positions ----
+
+// The triangle a traced primitive was set up from (its screen positions are the snapped ones, exact
+// in float), clockwise on screen.
+std::optional<TriangleSetup> tracedTriangle(const TracePrimitive& p) {
+    if (p.kind != PrimitiveKind::Triangle || p.vertexCount != 3 || p.fate != PrimitiveFate::Rasterized)
+        return std::nullopt;
+    ScreenVertex s[3];
+    for (int k = 0; k < 3; ++k) s[k] = {snap(p.screen[k].x), snap(p.screen[k].y), 0.0f, 1.0f};
+    RasterizerState rs;
+    rs.cullMode = CullMode::None;
+    const uint32_t vertex[3] = {0, 1, 2};
+    const PixelRect everywhere{INT32_MIN / 2, INT32_MIN / 2, INT32_MAX / 2, INT32_MAX / 2};
+    TriangleSetup t;
+    if (setupTriangle(s, vertex, 0, rs, everywhere, t) == SetupResult::Degenerate) return std::nullopt;
+    return t;
+}
+
+// What the pixel's centre is to triangle t, in words a student can act on, given whether your
+// render covered it (the solution's, by the library's rule, did the opposite): the two usual causes,
+// each named when it explains the difference — the tie-break of a centre exactly on an edge, and
+// coverage tested at the pixel's corner (x, y) instead of its centre. "" when neither does.
+std::string coverageHint(const TriangleSetup& t, int32_t x, int32_t y, bool yours_covered) {
+    std::vector<std::string> hints;
+    for (int k = 0; k < 3 && hints.empty(); ++k) {
+        const int k1 = (k + 1) % 3, k2 = (k + 2) % 3;
+        // On the edge itself: on its line and inside the other two.
+        if (edgeAt(t, k, x, y) != 0 || edgeAt(t, k1, x, y) < 0 || edgeAt(t, k2, x, y) < 0) continue;
+        const int32_t dx = t.x[k1] - t.x[k], dy = t.y[k1] - t.y[k];
+        const char* side = dy == 0 ? (dx > 0 ? "top" : "bottom") : (dy < 0 ? "left" : "right");
+        hints.push_back(
+            fmt("its centre (%d.5, %d.5) lies exactly on the triangle's edge from (%.4g, %.4g) to "
+                "(%.4g, %.4g), a %s edge, which %s it: the top-left rule gives a centre on an edge "
+                "to the triangle only on a top or left edge: check the top-left rule",
+                x, y, double(t.x[k]) / kSubpixelOne, double(t.y[k]) / kSubpixelOne,
+                double(t.x[k1]) / kSubpixelOne, double(t.y[k1]) / kSubpixelOne, side,
+                isTopLeft(dx, dy) ? "covers" : "does not cover"));
+    }
+    // The library's rule at the pixel's corner: each edge function half a pixel up and left.
+    bool corner = true;
+    for (int k = 0; k < 3; ++k) {
+        const int k1 = (k + 1) % 3;
+        const int64_t shift = (int64_t(t.x[k1] - t.x[k]) - int64_t(t.y[k1] - t.y[k])) * kSubpixelHalf;
+        corner = corner && edgeAt(t, k, x, y) - shift + t.bias[k] >= 0;
+    }
+    if (corner == yours_covered)
+        hints.push_back(
+            fmt("its corner (%d, %d) lies %s the triangle, and yours %s the pixel: is coverage "
+                "tested at the pixel's centre (x + 0.5, y + 0.5)?",
+                x, y, corner ? "inside" : "outside", yours_covered ? "covered" : "did not cover"));
+    std::string text;
+    for (const std::string& h : hints) text += (text.empty() ? "" : "; or ") + h;
+    return text;
+}
+
+std::optional<Found> coverageDifference(const Trace& yours, Key key, int32_t x, int32_t y, size_t mine,
+                                        size_t theirs) {
+    std::string text =
+        mine > theirs
+            ? fmt("your rasterizer covered pixel (%d, %d) with primitive %u %zu time%s, the solution's %zu",
+                  x, y, key.second, mine, mine == 1 ? "" : "s", theirs)
+            : fmt("your rasterizer did not cover pixel (%d, %d) with primitive %u (%zu fragment%s), the "
+                  "solution's did (%zu)",
+                  x, y, key.second, mine, mine == 1 ? "" : "s", theirs);
+    text += " from the same positions after setup";
+    std::string hint;
+    if (const TraceDraw* d = findDraw(yours, key.first))
+        for (const TracePrimitive* p : primitivesOf(*d, key.second))
+            if (const std::optional<TriangleSetup> t = tracedTriangle(*p); t && hint.empty())
+                hint = coverageHint(*t, x, y, mine > theirs);
+    text += hint.empty() ? ": compare the rasterizer state (culling, scissor) and the coverage test"
+                         : ": " + hint;
+    return Found{DiagnosisStage::Rasterizer, text};
+}
+
 std::map<Key, std::vector<TraceFragment>> byKey(const std::vector<TraceFragment>& fragments) {
     std::map<Key, std::vector<TraceFragment>> out;
     for (const TraceFragment& f : fragments) out[{f.draw, f.primitive}].push_back(f);
@@ -276,12 +353,10 @@ std::map<Key, std::vector<TraceFragment>> byKey(const std::vector<TraceFragment>
 std::optional<Found> keyDifference(const Trace& yours, const Trace& theirs, Key key,
                                    const std::vector<TraceFragment>& a, const std::vector<TraceFragment>& b) {
     if (auto found = geometryDifference(yours, theirs, key.first, key.second)) return found;
-    if (a.size() != b.size())
-        return Found{
-            DiagnosisStage::Rasterizer,
-            fmt("your primitive covers this pixel %zu time%s, the solution's %zu (same positions after "
-                "setup): compare the rasterizer state (culling, scissor)",
-                a.size(), a.size() == 1 ? "" : "s", b.size())};
+    if (a.size() != b.size()) {
+        const int32_t x = !a.empty() ? a.front().x : b.front().x, y = !a.empty() ? a.front().y : b.front().y;
+        return coverageDifference(yours, key, x, y, a.size(), b.size());
+    }
     std::vector<std::string> blend_differences;
     for (const std::string& line : drawStateDifferences(yours, theirs, key.first))
         if (line.find(" blend: ") != std::string::npos)
@@ -335,6 +410,23 @@ std::vector<std::string> drawStateDifferences(const Trace& submission, const Tra
     }
     addIfDifferent(out, blend, "write mask", fmt("0x%X", x.renderTargetWriteMask),
                    fmt("0x%X", y.renderTargetWriteMask));
+    const RasterizerState &r = a->rasterizer, &t = b->rasterizer;
+    const std::string rasterizer = fmt("draw %u rasterizer: ", draw);
+    addIfDifferent(out, rasterizer, "cull mode", "CullMode::" + std::string(name(r.cullMode)),
+                   "CullMode::" + std::string(name(t.cullMode)));
+    addIfDifferent(out, rasterizer, "fill mode", "FillMode::" + std::string(name(r.fillMode)),
+                   "FillMode::" + std::string(name(t.fillMode)));
+    addIfDifferent(out, rasterizer, "front face", r.frontCounterClockwise ? "counter-clockwise" : "clockwise",
+                   t.frontCounterClockwise ? "counter-clockwise" : "clockwise");
+    auto scissor = [](const RasterizerState& s) {
+        return s.scissorEnable
+                   ? fmt("[%d, %d) x [%d, %d)", s.scissorLeft, s.scissorRight, s.scissorTop, s.scissorBottom)
+                   : std::string("off");
+    };
+    addIfDifferent(out, rasterizer, "scissor", scissor(r), scissor(t));
+    addIfDifferent(out, rasterizer, "depth clip", onOff(r.depthClipEnable), onOff(t.depthClipEnable));
+    addIfDifferent(out, rasterizer, "coverage", a->coverageTest ? "the lab's test" : "the library's rule",
+                   b->coverageTest ? "the lab's test" : "the library's rule");
     const DepthStencilState &p = a->depthStencil, &q = b->depthStencil;
     const std::string depth = fmt("draw %u depth-stencil: ", draw);
     addIfDifferent(out, depth, "depth test", onOff(p.depthEnable), onOff(q.depthEnable));

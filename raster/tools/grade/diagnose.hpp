@@ -23,8 +23,11 @@
 //   5. the colour after the output merger, given the same shader output and colour before (Blend)
 // Positions are compared exactly (the solution against itself is bit-exact at any thread count): a
 // different order of a strip's corners reads as a geometry difference, but then the images agree and
-// no diagnosis is asked for. Draws are compared as a whole too: blend and depth-stencil state
-// differences (TraceDraw records no rasterizer state) are listed in `details` whatever the stage.
+// no diagnosis is asked for. Draws are compared as a whole too: blend, depth-stencil and rasterizer
+// state differences are listed in `details` whatever the stage. A coverage difference (step 2's
+// Rasterizer, a fragment one side has and the other not) says what the pixel's centre is to the
+// triangle: exactly on an edge (the top-left rule), or inside where the pixel's corner is not or the
+// other way round (coverage tested at the corner instead of the centre).
 #pragma once
 
 #include <cstdint>
@@ -56,8 +59,8 @@ struct Diagnosis {
 
 Diagnosis diagnosePixel(const Trace& submission, const Trace& solution, int32_t x, int32_t y);
 
-// The blend and depth-stencil state differences of draw `draw` in both traces, one line each, e.g.
-// "draw 1 blend: your destination factor is INV_SRC_ALPHA where the solution's is ONE"; empty when equal
+// The blend, rasterizer and depth-stencil state differences of draw `draw` in both traces, one line each,
+// e.g. "draw 1 blend: your destination factor is INV_SRC_ALPHA where the solution's is ONE"; empty when equal
 // or when either trace lacks the draw.
 std::vector<std::string> drawStateDifferences(const Trace& submission, const Trace& solution, uint32_t draw);
 

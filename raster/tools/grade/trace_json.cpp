@@ -36,6 +36,12 @@ Json blendJson(const BlendState& blend) {
             int(t.srcBlendAlpha), int(t.destBlendAlpha), int(t.blendOpAlpha), int(t.renderTargetWriteMask)};
 }
 
+Json rasterizerJson(const TraceDraw& d) {
+    const RasterizerState& r = d.rasterizer;
+    return {int(r.fillMode), int(r.cullMode), r.frontCounterClockwise, r.depthClipEnable, r.scissorEnable,
+            r.scissorLeft,   r.scissorTop,    r.scissorRight,          r.scissorBottom,   d.coverageTest};
+}
+
 Json drawJson(const TraceDraw& d) {
     Json vertices = Json::array(), gs = Json::array(), primitives = Json::array();
     for (const TraceVertex& v : d.vertices) vertices.push_back({v.instance, v.index, floats(v.output)});
@@ -51,6 +57,7 @@ Json drawJson(const TraceDraw& d) {
         {"topology", int(d.topology)},
         {"blend", blendJson(d.blend)},
         {"depth", {d.depthStencil.depthEnable, d.depthStencil.depthWriteMask, int(d.depthStencil.depthFunc)}},
+        {"rasterizer", rasterizerJson(d)},
         {"layout", {d.vsPosition, d.gsPosition, d.vsFloats, d.gsFloats}},
         {"totals", {d.verticesTotal, d.gsVerticesTotal, d.primitivesTotal}},
         {"skipped", d.skipped},
@@ -143,6 +150,20 @@ struct Reader {
         t.renderTargetWriteMask = uint8_t(whole(item(j, 7, "blend"), 0xF));
     }
 
+    void rasterizer(const Json& j, TraceDraw& d) const {
+        RasterizerState& r = d.rasterizer;
+        r.fillMode = FillMode(whole(item(j, 0, "rasterizer"), uint64_t(FillMode::Wireframe)));
+        r.cullMode = CullMode(whole(item(j, 1, "rasterizer"), uint64_t(CullMode::Back)));
+        r.frontCounterClockwise = flag(item(j, 2, "rasterizer"));
+        r.depthClipEnable = flag(item(j, 3, "rasterizer"));
+        r.scissorEnable = flag(item(j, 4, "rasterizer"));
+        r.scissorLeft = integer(item(j, 5, "rasterizer"));
+        r.scissorTop = integer(item(j, 6, "rasterizer"));
+        r.scissorRight = integer(item(j, 7, "rasterizer"));
+        r.scissorBottom = integer(item(j, 8, "rasterizer"));
+        d.coverageTest = flag(item(j, 9, "rasterizer"));
+    }
+
     void geometry(const Json& j, TraceDraw& d) const {
         for (const Json& v : array(at(j, "vertices"), "vertices"))
             d.vertices.push_back({uint32_t(whole(item(v, 0, "vertex"), UINT32_MAX)),
@@ -179,6 +200,7 @@ struct Reader {
         d.depthStencil.depthWriteMask = flag(item(depth, 1, "depth"));
         d.depthStencil.depthFunc =
             ComparisonFunc(whole(item(depth, 2, "depth"), uint64_t(ComparisonFunc::Always)));
+        rasterizer(at(j, "rasterizer"), d);
         const Json& layout = at(j, "layout");
         d.vsPosition = uint32_t(whole(item(layout, 0, "layout"), 1u << 16));
         d.gsPosition = uint32_t(whole(item(layout, 1, "layout"), 1u << 16));

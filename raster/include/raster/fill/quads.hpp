@@ -15,8 +15,25 @@
 #include <cstdint>
 
 #include "raster/fill/tile.hpp"
+#include "raster/teaching_pipeline.hpp"
 
 namespace raster {
+
+// The triangle a coverage test is given: t's vertices back in the draw's order (setupTriangle swaps
+// vertices 1 and 2 of a counter-clockwise triangle) with their unsnapped window positions.
+template <class V>
+CoverageTriangle coverageTriangle(const TriangleSetup& t, const V* const (&verts)[3],
+                                  const TeachingCoverage& coverage) {
+    const bool clockwise = coverage.frontCounterClockwise ? !t.frontFacing : t.frontFacing;
+    const int order[3] = {0, clockwise ? 1 : 2, clockwise ? 2 : 1};
+    CoverageTriangle triangle;
+    for (int k = 0; k < 3; ++k) {
+        const glm::vec4& clip = verts[order[k]]->position;
+        triangle.x[k] = windowX(clip, coverage.viewport);
+        triangle.y[k] = windowY(clip, coverage.viewport);
+    }
+    return triangle;
+}
 
 // A triangle, quad by quad.
 template <class T>
@@ -25,7 +42,7 @@ void fillTriangleQuads(T& tile, const TriangleSetup& t, const TriangleInterpolan
     using Real = typename T::RealType;
     using V = typename T::Vertex;
     const float min_depth = tile.draw.minDepth, max_depth = tile.draw.maxDepth;
-    rasterizeTriangle(t, steps, tile.rect, [&](const Quad& q) {
+    auto shade = [&](const Quad& q) {
         // The edge functions at a lane's centre: lane 0's plus the steps.
         auto edges = [&](int lane) {
             const int lx = lane & 1, ly = lane >> 1;
@@ -44,7 +61,19 @@ void fillTriangleQuads(T& tile, const TriangleSetup& t, const TriangleInterpolan
                 interpolateAttributes(ti, barycentrics(ti, e[0], e[1], e[2]), verts, q.x + (lane & 1),
                                       q.y + (lane >> 1), z, in);
             });
-    });
+    };
+    // A teaching draw with the rasterizer lab's coverage test (teaching_pipeline.hpp): the lab decides
+    // which pixel centres are covered. Only the teaching pixel shader has `coverage`: for every other
+    // shader this is compiled out.
+    if constexpr (requires { tile.draw.ps.coverage.test; }) {
+        if (const TeachingCoverage& coverage = tile.draw.ps.coverage; coverage.test) {
+            const CoverageTriangle triangle = coverageTriangle(t, verts, coverage);
+            rasterizeTriangleCovered(
+                t, tile.rect, [&](int32_t x, int32_t y) { return coverage.test(triangle, x, y); }, shade);
+            return;
+        }
+    }
+    rasterizeTriangle(t, steps, tile.rect, shade);
 }
 
 // A billboard's screen rectangle, quad by quad: attribute = base + i·step_x + j·step_y at pixel

@@ -6,11 +6,13 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include "raster/stages/clipper.hpp"
 #include "raster/stages/setup.hpp"
 #include "raster/statistics.hpp"
+#include "raster/teaching_pipeline.hpp"
 #include "raster/trace.hpp"
 
 namespace raster {
@@ -156,6 +158,9 @@ struct PrimitiveSpace {
     TileGrid grid;
     ClipPlanes planes;
     ViewportTransform viewport;
+    // A teaching draw with a lab's coverage test (teaching_pipeline.hpp): each triangle goes to every
+    // tile of its box, since the lab's test, not the library's edges, decides which pixels it covers.
+    bool binWholeBoxes = false;
 };
 
 // A billboard quad from the geometry shader (a four-vertex strip) set up as one screen rectangle
@@ -252,6 +257,14 @@ void setupAndBinTriangle(const ScreenVertex (&s)[3], const uint32_t (&idx)[3], u
         case SetupResult::Ok: {
             const uint32_t index = uint32_t(chunk.triangles.size());
             chunk.triangles.push_back(t);
+            if constexpr (std::is_same_v<V, TeachingVertex>) {
+                if (plan.binWholeBoxes) {
+                    st.tilesBinned += binBox(t.box, plan.grid, [&](uint32_t tile) {
+                        chunk.bins[tile].push_back(binEntry(PrimitiveKind::Triangle, index));
+                    });
+                    return;
+                }
+            }
             binTriangle(
                 t, plan.grid,
                 [&](uint32_t tile) { chunk.bins[tile].push_back(binEntry(PrimitiveKind::Triangle, index)); },

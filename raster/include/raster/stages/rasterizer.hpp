@@ -72,6 +72,46 @@ void rasterizeTriangle(const TriangleSetup& t, const EdgeSteps& s, const PixelRe
     }
 }
 
+// The library's coverage rule as a CoverageTest (stages/setup.hpp): the triangle snapped and set up
+// by setupTriangle (no culling, no clip rectangle), then the edge functions with the top-left bias at
+// the pixel's centre, exactly as rasterizeTriangle decides. A triangle of no area covers nothing.
+// The rasterizer lab's solution is the student's version of it (tests/labs_test.cpp compares them).
+inline bool coversPixelCentre(const CoverageTriangle& triangle, int32_t px, int32_t py) {
+    ScreenVertex s[3];
+    for (int k = 0; k < 3; ++k) s[k] = {snap(triangle.x[k]), snap(triangle.y[k]), 0.0f, 1.0f};
+    RasterizerState rs;
+    rs.cullMode = CullMode::None;
+    const PixelRect everywhere{INT32_MIN / 2, INT32_MIN / 2, INT32_MAX / 2, INT32_MAX / 2};
+    const uint32_t vertex[3] = {0, 1, 2};
+    TriangleSetup t;
+    const SetupResult result = setupTriangle(s, vertex, 0, rs, everywhere, t);
+    if (result == SetupResult::Degenerate) return false;
+    for (int k = 0; k < 3; ++k)
+        if (edgeAt(t, k, px, py) + t.bias[k] < 0) return false;
+    return true;
+}
+
+// rasterizeTriangle with the coverage decided by covered(px, py) instead of the edge functions: every
+// quad of the triangle's box inside `tile` is asked, lane by lane, and visited when a lane is
+// covered (Quad::e still the edge functions at lane 0's centre, for interpolation). The teaching
+// pipeline's draws with a lab's coverage test take it (fill/quads.hpp).
+template <class Covered, class Visit>
+void rasterizeTriangleCovered(const TriangleSetup& t, const PixelRect& tile, Covered&& covered,
+                              Visit&& visit) {
+    const int32_t x0 = std::max(t.box.x0, tile.x0), x1 = std::min(t.box.x1, tile.x1);
+    const int32_t y0 = std::max(t.box.y0, tile.y0), y1 = std::min(t.box.y1, tile.y1);
+    for (int32_t y = y0 & ~1; y <= y1; y += 2) {
+        for (int32_t x = x0 & ~1; x <= x1; x += 2) {
+            uint32_t mask = 0;
+            for (int lane = 0; lane < 4; ++lane) {
+                const int32_t lx = x + (lane & 1), ly = y + (lane >> 1);
+                if (lx >= x0 && lx <= x1 && ly >= y0 && ly <= y1 && covered(lx, ly)) mask |= 1u << lane;
+            }
+            if (mask) visit(Quad{x, y, mask, {edgeAt(t, 0, x, y), edgeAt(t, 1, x, y), edgeAt(t, 2, x, y)}});
+        }
+    }
+}
+
 // A 4×2 block's edge functions relative to its lane 0's: per edge, the top row's four lanes and the
 // bottom row's four, exact int64 (lane l at (l % 4, l / 4) pixels from lane 0).
 struct BlockLaneOffsets {

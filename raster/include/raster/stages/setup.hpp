@@ -53,11 +53,37 @@ struct ScreenVertex {
     float invW;
 };
 
+// A clip-space position's window x and y in pixels (x right, y down), before snapping: the values
+// toScreen snaps, and what a lab's coverage test is given (CoverageTriangle).
+inline double windowX(const glm::vec4& clip, const ViewportTransform& vp) {
+    return double(clip.x) * (1.0 / double(clip.w)) * vp.sx + vp.ox;
+}
+inline double windowY(const glm::vec4& clip, const ViewportTransform& vp) {
+    return double(clip.y) * (1.0 / double(clip.w)) * vp.sy + vp.oy;
+}
+
 inline ScreenVertex toScreen(const glm::vec4& clip, const ViewportTransform& vp) {
     const double inv_w = 1.0 / double(clip.w);
-    return {snap(double(clip.x) * inv_w * vp.sx + vp.ox), snap(double(clip.y) * inv_w * vp.sy + vp.oy),
-            float(double(clip.z) * inv_w * vp.sz + vp.oz), float(inv_w)};
+    return {snap(windowX(clip, vp)), snap(windowY(clip, vp)), float(double(clip.z) * inv_w * vp.sz + vp.oz),
+            float(inv_w)};
 }
+
+// A triangle as a coverage test is given it (the rasterizer lab, Context::setCoverageTest): its
+// vertices' window positions in pixels, unsnapped, in the order the draw gave them (x right, y down;
+// pixel (i, j) spans [i, i + 1) × [j, j + 1), its centre at (i + ½, j + ½)).
+struct CoverageTriangle {
+    double x[3], y[3];
+};
+// Whether the triangle covers pixel (px, py)'s centre. The library's answer is
+// coversPixelCentre (stages/rasterizer.hpp), which applies the rules of this file and of
+// TriangleSetup: snap each coordinate to 16.8 fixed point (X = nearbyint(256·x), ties to even);
+// take the centre in the same units, (256·px + 128, 256·py + 128); order the vertices clockwise on
+// screen (swap vertices 1 and 2 when twice the signed area is negative); the centre is covered when
+// every edge function E_k (64-bit integers, 16.16 units) is > 0, or = 0 on a top or left edge.
+// Why: after the snap everything is exact integer arithmetic, so two triangles sharing an edge
+// evaluate the very same edge function (negated) at every centre, and the top-left rule gives a
+// centre exactly on it to exactly one of them: no pixel of a mesh is drawn twice or left out.
+using CoverageTest = bool (*)(const CoverageTriangle& triangle, int32_t px, int32_t py);
 
 // Pixels whose centres lie within [lo, hi] (16.8 coordinates).
 inline int32_t firstPixel(int32_t lo) { return floorDiv(int64_t(lo) - kSubpixelHalf + kSubpixelOne - 1, kSubpixelOne); }
