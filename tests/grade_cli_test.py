@@ -5,8 +5,9 @@
 
 CASE is `solutions` or `labs` (the source tree's own folders, graded on the real declarations: full
 marks, and less than full marks on every lab), or the name of a folder of tests/grader/ (graded on the
-small scenes of tests/grader/root: each must lose exactly the scenes its defect reaches, with the
-diagnosis or the reason naming it). Exit status 0 when every check holds, 1 with what did not.
+small scenes of tests/grader/root, only the lab it holds (--lab): each must lose exactly the scenes its
+defect reaches, with the diagnosis or the reason naming it). Exit status 0 when every check holds, 1
+with what did not.
 """
 import json
 import os
@@ -15,19 +16,25 @@ import subprocess
 import sys
 import time
 
-PARTICLES = {"small_start", "close_few"}  # tests/grader/root's scenes that draw particles
-# case: (scenes lost, verdict of those, words that must be in their output)
+# tests/grader/root's scenes, the same three in every lab; two of them draw particles.
+SCENES = {"small_start", "no_particles", "close_few"}
+PARTICLES = {"small_start", "close_few"}
+# case: (lab, scenes lost, verdict of those, words that must be in their output)
 CASES = {
-    "wrong_blend": (PARTICLES, "fail", ["blend: ", "your destination factor is Blend::InvSrcAlpha where the solution's is Blend::One"]),
-    "depth_write_on": (PARTICLES, "fail", ["depth test: ", "is depth write on?", "your depth write is on where the solution's is off"]),
-    "offset_after_w": (PARTICLES, "fail", ["geometry shader: ", "geometry shader output", "differs by"]),
-    "gs_drops_corner": (PARTICLES, "fail", ["geometry shader: ", "the geometry shader emitted 1 triangle (3 vertices)", "(solution: 2 triangles, 4 vertices)"]),
-    "crash": (PARTICLES, "error", ["crashed: ", "SIGSEGV"]),
-    "infinite_loop": (PARTICLES, "error", ["timed out: "]),
-    "unbounded_alloc": (PARTICLES, "error", ["ran out of memory: "]),
-    "fork_bomb": (PARTICLES, "error", ["too many processes: "]),
-    "snoop": (set(), "pass", []),
-    "alternative": (set(), "pass", []),
+    "wrong_blend": ("billboards", PARTICLES, "fail", ["blend: ", "your destination factor is Blend::InvSrcAlpha where the solution's is Blend::One"]),
+    "depth_write_on": ("billboards", PARTICLES, "fail", ["depth test: ", "is depth write on?", "your depth write is on where the solution's is off"]),
+    "offset_after_w": ("billboards", PARTICLES, "fail", ["geometry shader: ", "geometry shader output", "differs by"]),
+    "gs_drops_corner": ("billboards", PARTICLES, "fail", ["geometry shader: ", "the geometry shader emitted 1 triangle (3 vertices)", "(solution: 2 triangles, 4 vertices)"]),
+    "crash": ("billboards", PARTICLES, "error", ["crashed: ", "SIGSEGV"]),
+    "infinite_loop": ("billboards", PARTICLES, "error", ["timed out: "]),
+    "unbounded_alloc": ("billboards", PARTICLES, "error", ["ran out of memory: "]),
+    "fork_bomb": ("billboards", PARTICLES, "error", ["too many processes: "]),
+    "snoop": ("billboards", set(), "pass", []),
+    "alternative": ("billboards", set(), "pass", []),
+    "age_offset": ("input-layout", PARTICLES, "fail", ["input assembler: ", "with AGE = ", "what the solution reads as LIFESPAN (is the element's AlignedByteOffset that field's offsetof?)"]),
+    "colour_too_narrow": ("input-layout", PARTICLES, "fail", ["input assembler: ", "with COLOR = ", "the first 3 components and the defaults (0, 0, 0, 1) after them", "Format too narrow"]),
+    "library_layout": ("input-layout", PARTICLES, "error", ["failed: ", "element COLOR0 (feeding `colour`) at byte 36", "stride of 48 bytes"]),
+    "untransformed": ("input-layout", PARTICLES, "fail", ["vertex shader: ", "from the same input: its SV_Position is"]),
 }
 
 
@@ -70,15 +77,16 @@ def check_real(raster, source, out, case):
 
 
 def check_case(raster, source, out, case):
-    lost, verdict, words = CASES[case]
+    lab, lost, verdict, words = CASES[case]
     submission = os.path.join(source, "tests", "grader", case)
     root = os.path.join(source, "tests", "grader", "root")
-    extra = ["--grading-root", root, "--render-seconds", "8", "--render-memory", "768"]
+    extra = ["--grading-root", root, "--lab", lab, "--render-seconds", "8", "--render-memory", "768"]
     results = grade(raster, submission, os.path.abspath(out), extra, source)
     errors = []
     by_scene = scenes(results)
-    if set(by_scene) != {"small_start", "no_particles", "close_few"}:
-        errors.append(f"graded {sorted(by_scene)}, not the three scenes of tests/grader/root")
+    if set(by_scene) != SCENES or any(not t["name"].startswith(lab + ": ") for t in results["tests"]):
+        errors.append(f"graded {sorted(t['name'] for t in results['tests'])}, not the three scenes of {lab} "
+                      "in tests/grader/root")
     for name, t in by_scene.items():
         status = t["extra_data"]["verdict"]
         if name in lost:
