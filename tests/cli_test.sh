@@ -60,6 +60,8 @@ for command in "bench particles" "trace particles --stats" "view particles"; do
     bad --count 50000001 $command --count 50000001
     bad --count ten $command --count ten
     bad --count "" $command --count
+    bad --seed 4294967296 $command --seed 4294967296
+    bad --seed -1 $command --seed -1
     bad --cubes 1025 $command --cubes 1025
     bad --cubes x $command --cubes x
     bad --cubes "" $command --cubes
@@ -154,11 +156,11 @@ helps() {
     grep -qF -- "$option" "$tmp/out" || fail "raster $command --help does not list $option"
   done
 }
-helps bench --width --height --count --cubes --fog --texture --frames --threads --out --reference --plain --no-error \
+helps bench --width --height --count --seed --cubes --fog --texture --frames --threads --out --reference --plain --no-error \
   --turbulence particles-sim
 helps render --out-dir --width --height --reference --plain --view --list
-helps trace --stats --pixel --json --draw --limit --width --height --count --cubes --fog --threads --reference --plain
-helps view --size --count --cubes --fog --threads --reference --plain --headless --script --screenshot-dir \
+helps trace --stats --pixel --json --draw --limit --width --height --count --seed --cubes --fog --threads --reference --plain
+helps view --size --count --seed --cubes --fog --threads --reference --plain --headless --script --screenshot-dir \
   --screenshot-window --solution "keys:"
 helps microbench --benchmark_filter "Google Benchmark"
 helps grade --lab --out --public --jobs --threads --path --render-seconds --render-memory --build-seconds \

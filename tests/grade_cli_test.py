@@ -5,8 +5,9 @@
 
 CASE is `solutions` or `labs` (the source tree's own folders, graded on the real declarations: full
 marks, and less than full marks on every lab), or the name of a folder of tests/grader/ (graded on the
-small scenes of tests/grader/root: each must lose exactly the scenes its defect reaches, with the
-diagnosis or the reason naming it). Exit status 0 when every check holds, 1 with what did not.
+small scenes of tests/grader/root, only the lab it holds (--lab): each must lose exactly the scenes its
+defect reaches, with the diagnosis or the reason naming it). Exit status 0 when every check holds, 1
+with what did not.
 """
 import json
 import os
@@ -36,8 +37,12 @@ CASES = {
     "fork_bomb": ("billboards", PARTICLES, "error", ["too many processes: "]),
     "snoop": ("billboards", set(), "pass", []),
     "alternative": ("billboards", set(), "pass", []),
+    "age_offset": ("input-layout", PARTICLES, "fail", ["input assembler: ", "with AGE = ", "what the solution reads as LIFESPAN (is the element's AlignedByteOffset that field's offsetof?)"]),
+    "colour_too_narrow": ("input-layout", PARTICLES, "fail", ["input assembler: ", "with COLOR = ", "the first 3 components and the defaults (0, 0, 0, 1) after them", "Format too narrow"]),
+    "library_layout": ("input-layout", PARTICLES, "error", ["failed: ", "element COLOR0 (feeding `colour`) at byte 36", "stride of 48 bytes"]),
+    "untransformed": ("input-layout", PARTICLES, "fail", ["vertex shader: ", "from the same input: its SV_Position is"]),
 }
-SCENES = {"billboards": BILLBOARDS, "rasterizer": RASTERIZER}
+SCENES = {"billboards": BILLBOARDS, "input-layout": BILLBOARDS, "rasterizer": RASTERIZER}
 
 
 def grade(raster, submission, out, extra, cwd):
@@ -89,8 +94,9 @@ def check_case(raster, source, out, case):
     results = grade(raster, submission, os.path.abspath(out), extra, source)
     errors = []
     by_scene = scenes(results)
-    if set(by_scene) != SCENES[lab]:
-        errors.append(f"graded {sorted(by_scene)}, not the three {lab} scenes of tests/grader/root")
+    if set(by_scene) != SCENES[lab] or any(not t["name"].startswith(lab + ": ") for t in results["tests"]):
+        errors.append(f"graded {sorted(t['name'] for t in results['tests'])}, not the three scenes of {lab} "
+                      "in tests/grader/root")
     for name, t in by_scene.items():
         status = t["extra_data"]["verdict"]
         if name in lost:

@@ -231,6 +231,101 @@ TEST(GradeDiagnose, RasterizerStateDifferencesAreListed) {
                     .empty());
 }
 
+// A point-list draw without a geometry shader, as the input-layout lab draws: primitive 2 is vertex 2,
+// whose input (POSITION, LIFESPAN, AGE, COLOR) and output (SV_Position, colour) are recorded.
+struct PointFrame {
+    Trace trace{TraceOptions{.pixels = {kX, kY, kX, kY}}};
+
+    // input: position (3), lifespan, age, colour (4); output: SV_Position (4), colour (4).
+    PointFrame(std::vector<float> input, std::vector<float> output) {
+        TraceDraw& d = trace.beginDraw(16, 16);
+        d.draw = 1;
+        d.vertexShader = "VsParticle", d.pixelShader = "PsParticle";
+        d.topology = Topology::PointList;
+        d.inputFields = {{"POSITION", 0, 3}, {"LIFESPAN", 3, 1}, {"AGE", 4, 1}, {"COLOR", 5, 4}};
+        d.vsFloats = 8;
+        for (uint32_t i = 0; i < 3; ++i) d.vertices.push_back({0, i, kInput, kOutput});
+        d.vertices[2] = {0, 2, std::move(input), std::move(output)};
+        TracePrimitive p{};
+        p.primitive = 2, p.kind = PrimitiveKind::Point, p.fate = PrimitiveFate::Rasterized, p.vertexCount = 1;
+        p.screen[0] = {kX + 0.5f, kY + 0.5f, 0.5f, 1};
+        d.primitives.push_back(p);
+        trace.addFragments(
+            {{1, 2, kX, kY, 0.5f, 1.0f, 0.5f, FragmentFate::Written, true, kFire, kBlack, kFire}});
+    }
+    static inline const std::vector<float> kInput = {0.1f, 0.2f, 0.3f, 2.0f, 0.5f, 1.0f, 0.5f, 0.25f, 0.75f};
+    static inline const std::vector<float> kOutput = {0.1f, 0.2f, 0.3f, 1.0f, 0.65f, 0.325f, 0.1625f, 1.0f};
+};
+
+TEST(GradeDiagnose, InputAssemblerOffsetOfAnotherFieldIsNamed) {
+    std::vector<float> input = PointFrame::kInput;
+    input[4] = input[3];  // AGE read at LIFESPAN's offset
+    const PointFrame yours(input, PointFrame::kOutput), theirs(PointFrame::kInput, PointFrame::kOutput);
+    const grade::Diagnosis d = grade::diagnosePixel(yours.trace, theirs.trace, kX, kY);
+    EXPECT_EQ(d.stage, DiagnosisStage::InputAssembler);
+    EXPECT_EQ(std::string(grade::stageName(d.stage)), "input assembler");
+    EXPECT_NE(
+        d.headline.find("draw 1, primitive 2: the input assembler fetched vertex 2 (instance 0) with AGE = 2 "
+                        "where the solution's is 0.5: yours holds what the solution reads as LIFESPAN"),
+        std::string::npos)
+        << d.headline;
+}
+
+TEST(GradeDiagnose, InputAssemblerFormatTooNarrowIsNamed) {
+    std::vector<float> input = PointFrame::kInput;
+    input[8] = 1.0f;  // COLOR as R32G32B32_FLOAT: the fourth component is the default 1
+    const PointFrame yours(input, PointFrame::kOutput), theirs(PointFrame::kInput, PointFrame::kOutput);
+    const grade::Diagnosis d = grade::diagnosePixel(yours.trace, theirs.trace, kX, kY);
+    EXPECT_EQ(d.stage, DiagnosisStage::InputAssembler);
+    EXPECT_NE(
+        d.headline.find("with COLOR = (1, 0.5, 0.25, 1) where the solution's is (1, 0.5, 0.25, 0.75): yours "
+                        "has the first 3 components and the defaults (0, 0, 0, 1) after them"),
+        std::string::npos)
+        << d.headline;
+}
+
+TEST(GradeDiagnose, VertexShaderOutputFromTheSameInputIsNamed) {
+    std::vector<float> moved = PointFrame::kOutput, dimmer = PointFrame::kOutput;
+    moved[0] = 0.15f;  // x in clip space: 0.05 * 16 / 2 = +0.4 pixel
+    dimmer[5] = 0.5f;
+    const PointFrame theirs(PointFrame::kInput, PointFrame::kOutput);
+    const PointFrame yours_moved(PointFrame::kInput, moved), yours_dimmer(PointFrame::kInput, dimmer);
+    grade::Diagnosis d = grade::diagnosePixel(yours_moved.trace, theirs.trace, kX, kY);
+    EXPECT_EQ(d.stage, DiagnosisStage::VertexShader);
+    EXPECT_NE(
+        d.headline.find("the vertex shader's output for vertex 2 (instance 0), from the same input: its "
+                        "SV_Position is (0.15, 0.2, 0.3, 1) where the solution's is (0.1, 0.2, 0.3, 1)"),
+        std::string::npos)
+        << d.headline;
+    EXPECT_NE(d.headline.find("x differs by +0.40 pixel"), std::string::npos) << d.headline;
+    d = grade::diagnosePixel(yours_dimmer.trace, theirs.trace, kX, kY);
+    EXPECT_EQ(d.stage, DiagnosisStage::VertexShader);
+    EXPECT_NE(d.headline.find("differs in float 5: 0.5 where the solution's is 0.325"), std::string::npos)
+        << d.headline;
+    // The same draw, the same records: nothing to name.
+    EXPECT_EQ(grade::diagnosePixel(theirs.trace, theirs.trace, kX, kY).stage, DiagnosisStage::None);
+}
+
+TEST(GradeDiagnose, TraceJsonCarriesTheVertexShadersInputs) {
+    const PointFrame f(PointFrame::kInput, PointFrame::kOutput);
+    const Trace back = grade::traceFromJson(grade::traceToJson(f.trace), "test");
+    ASSERT_EQ(back.draws().size(), 1u);
+    const TraceDraw& d = back.draws()[0];
+    ASSERT_EQ(d.inputFields.size(), 4u);
+    EXPECT_EQ(d.inputFields[3].name, "COLOR");
+    EXPECT_EQ(d.inputFields[3].offset, 5u);
+    EXPECT_EQ(d.inputFields[3].components, 4u);
+    ASSERT_EQ(d.vertices.size(), 3u);
+    EXPECT_EQ(d.vertices[2].input, PointFrame::kInput);
+    EXPECT_EQ(d.vertices[2].output, PointFrame::kOutput);
+    // A field outside the recorded input is refused, not read past the record.
+    std::string json = grade::traceToJson(f.trace);
+    const std::string field = "[\"COLOR\",5,4]";
+    ASSERT_NE(json.find(field), std::string::npos) << json;
+    json.replace(json.find(field), field.size(), "[\"COLOR\",7,4]");
+    EXPECT_THROW(grade::traceFromJson(json, "test"), Error);
+}
+
 TEST(GradeDiagnose, TraceJsonReadsBackFieldForField) {
     Frame f = solution();
     const Trace& trace = f.done();

@@ -679,8 +679,11 @@ TEST(InputAssemblerErrors, ElementDoesNotFitTheStride) {
     const InputElementDesc wide[] = {{"POSITION", 0, Format::R32G32B32A32_FLOAT, 0, 0}};
     const InputLayout wideLayout(wide);
     e.ctx.setInputLayout(&wideLayout);
+    // The message names the element and the shader's field it feeds, so that a layout copied from
+    // another struct points at its culprit.
     e.expectDrawError([&] { e.draw(); }, ErrorCode::LayoutMismatch,
-                      {"input slot 0", "R32G32B32A32_FLOAT", "stride of 12"});
+                      {"input slot 0", "element POSITION0 (feeding `position`)", "R32G32B32A32_FLOAT",
+                       "ends at byte 16", "stride of 12"});
     // A float2 at byte 8 of the same buffer: ends at byte 16.
     const InputElementDesc late[] = {{"POSITION", 0, Format::R32G32_FLOAT, 0, 8}};
     const InputLayout lateLayout(late);

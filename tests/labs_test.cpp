@@ -4,18 +4,21 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <fstream>
 #include <iterator>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "raster/lab.hpp"
+#include "lecture_particle.hpp"
 
 namespace raster {
 namespace {
 
-RenderTarget renderScene(const std::string& name, const SceneOptions& options) {
-    Context context;
+RenderTarget renderScene(const std::string& name, const SceneOptions& options, unsigned threads = 0) {
+    Context context({threads});
     RenderTarget color(options.width, options.height);
     DepthTarget depth(options.width, options.height);
     makeScene(name, options)->render(context, color, depth);
@@ -37,6 +40,13 @@ void expectInvalidArgument(const auto& f, const std::string& part) {
         EXPECT_EQ(e.code(), ErrorCode::InvalidArgument) << e.what();
         EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what() << " lacks " << part;
     }
+}
+
+// A file of the source tree, as text (empty, with a failure, when it is missing).
+std::string labText(const std::string& path) {
+    std::ifstream in(std::string(RASTER_SOURCE_DIR) + "/" + path);
+    EXPECT_TRUE(in) << path << " is missing";
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 TEST(Labs, BillboardsIsRegisteredWithItsSolution) {
@@ -76,9 +86,7 @@ TEST(Labs, BillboardsSolutionDrawsTheLecturesParticles) {
 // As handed out the lab draws the occluder and none of the particles (its geometry shader emits
 // strips of no area). Skipped once a student has started on the file: this checks the hand-out.
 TEST(Labs, BillboardsAsHandedOutDrawsOnlyTheOccluder) {
-    std::ifstream in(std::string(RASTER_SOURCE_DIR) + "/labs/billboards/billboards.cpp");
-    ASSERT_TRUE(in) << "labs/billboards/billboards.cpp is missing";
-    const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    const std::string text = labText("labs/billboards/billboards.cpp");
     for (const char* start :
          {"stream.Append({c, {1, 0}});", "return {1.0f, 0.5f, 0.1f, 1.0f};",
           "    BlendState blend;\n    return blend;", "    DepthStencilState depth;\n    return depth;"})
@@ -175,6 +183,111 @@ TEST(Labs, RasterizerAsHandedOutDiffersFromTheSolution) {
     EXPECT_GT(differingPixels(renderScene("rasterizer", o), renderScene("rasterizer@solution", o)),
               size_t(o.width * o.height / 10))
         << "the picture a student starts from must be visibly wrong";
+}
+
+// ---- input-layout: the lecture's particleElements[] and the vertex shader's transform ----
+
+TEST(Labs, InputLayoutIsRegisteredWithItsSolution) {
+    const std::vector<std::string> names = sceneNames();
+    EXPECT_NE(std::find(names.begin(), names.end(), "input-layout"), names.end());
+    EXPECT_EQ(solutionSceneOf("input-layout"), "input-layout@solution");
+    EXPECT_EQ(defaultCamera("input-layout").eye, defaultCamera("particles").eye);
+    for (const char* name : {"input-layout", "input-layout@solution"})
+        EXPECT_EQ(makeScene(name, {.width = 8, .height = 8, .count = 1})->name(), name);
+}
+
+// The solution draws SCENES.md's occluder (without particles, the lecture's particle scene's image bit
+// for bit) and the simulated fire around it: thousands of one-pixel points, another set for another seed.
+TEST(Labs, InputLayoutSolutionDrawsTheFireAroundTheOccluder) {
+    const SceneOptions none{.width = 320, .height = 180, .count = 0};
+    const RenderTarget occluder = renderScene("input-layout@solution", none);
+    EXPECT_EQ(differingPixels(occluder, renderScene("particles", none)), 0u);
+    const SceneOptions o{.width = 320, .height = 180, .count = 3000, .seed = 0};
+    const RenderTarget fire = renderScene("input-layout@solution", o);
+    const size_t points = differingPixels(fire, occluder);
+    EXPECT_GT(points, 1000u) << "the particles are not drawn";
+    EXPECT_LE(points, 3000u) << "a point covers one pixel at most";
+    SceneOptions other = o;
+    other.seed = 1;
+    EXPECT_GT(differingPixels(fire, renderScene("input-layout@solution", other)), points / 2)
+        << "the seed must change the simulation";
+}
+
+// Graded exactly: the solution must give the same bits on any number of worker threads.
+TEST(Labs, InputLayoutSolutionIsBitIdenticalAt1_2And8Threads) {
+    const SceneOptions o{.width = 480, .height = 270, .count = 8000, .seed = 5};
+    const RenderTarget one = renderScene("input-layout@solution", o, 1);
+    EXPECT_EQ(differingPixels(one, renderScene("input-layout@solution", o, 2)), 0u);
+    EXPECT_EQ(differingPixels(one, renderScene("input-layout@solution", o, 8)), 0u);
+}
+
+// As handed out: flat (untransformed), dim and coloured by position, visibly not the solution. Skipped
+// once a student has started on the file: this checks the hand-out.
+TEST(Labs, InputLayoutAsHandedOutDiffersFromTheSolution) {
+    const std::string text = labText("labs/input-layout/input-layout.cpp");
+    for (const char* start : {"{\"LIFESPAN\", 0, Format::R32_FLOAT, 0, 0, kPerVertex, 0},",
+                              "{\"AGE\", 0, Format::R32_FLOAT, 0, 0, kPerVertex, 0},",
+                              "{\"COLOR\", 0, Format::R32G32B32_FLOAT, 0, 0, kPerVertex, 0},",
+                              "const glm::vec4 clip = glm::vec4(in.position, 1.0f);"})
+        if (text.find(start) == std::string::npos)
+            GTEST_SKIP() << "the lab has been edited (no '" << start << "')";
+    const SceneOptions o{.width = 320, .height = 180, .count = 3000};
+    const RenderTarget lab = renderScene("input-layout", o),
+                       solution = renderScene("input-layout@solution", o);
+    const size_t occluder_only = differingPixels(
+        solution, renderScene("input-layout@solution", {.width = 320, .height = 180, .count = 0}));
+    EXPECT_GT(differingPixels(lab, solution), occluder_only)
+        << "the picture a student starts from must be visibly wrong: more pixels differ than the fire covers";
+}
+
+using test::LectureParticle;
+using test::LectureParticleIn;
+
+struct VsLecture {
+    shaders::PositionOnly operator()(const LectureParticleIn& in) const {
+        return {glm::vec4(in.position, 1.0f)};
+    }
+};
+
+void expectLayoutError(std::span<const InputElementDesc> desc, std::initializer_list<std::string> parts) {
+    Context context;
+    RenderTarget color(8, 8);
+    DepthTarget depth(8, 8);
+    beginSceneFrame(context, color, depth);
+    const std::vector<LectureParticle> particles(4);
+    const VertexBuffer buffer = VertexBuffer::create(particles);
+    const InputLayout layout(desc);
+    context.setInputLayout(&layout);
+    context.setVertexBuffer(0, &buffer);
+    context.setPrimitiveTopology(Topology::PointList);
+    try {
+        context.draw(VsLecture{}, shaders::PsConstant{}, 4);
+        ADD_FAILURE() << "the draw did not refuse the layout";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ErrorCode::LayoutMismatch) << e.what();
+        for (const std::string& part : parts)
+            EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what() << " lacks " << part;
+    }
+}
+
+// A layout written for another struct (here raster::Particle's offsets: age before lifespan, a size,
+// the colour at byte 36; tests/particles_test.cpp checks the library's own) reads past the lecture's
+// 48-byte vertex, and the draw says so, naming the element and the field, before it writes anything. A
+// misspelt semantic names the field left without an element and the semantics the layout has.
+TEST(Labs, InputLayoutMismatchesAreNamedNotCrashed) {
+    const InputElementDesc other_struct[] = {{"POSITION", 0, Format::R32G32B32_FLOAT, 0, 0},
+                                             {"AGE", 0, Format::R32_FLOAT, 0, 24},
+                                             {"LIFESPAN", 0, Format::R32_FLOAT, 0, 28},
+                                             {"COLOR", 0, Format::R32G32B32A32_FLOAT, 0, 36}};
+    expectLayoutError(other_struct, {"input slot 0", "element COLOR0 (feeding `colour`)", "at byte 36",
+                                     "ends at byte 52", "stride of 48"});
+    const InputElementDesc misspelt[] = {
+        {"POSITION", 0, Format::R32G32B32_FLOAT, 0, 0},
+        {"LIFETIME", 0, Format::R32_FLOAT, 0, offsetof(LectureParticle, lifespan)},
+        {"AGE", 0, Format::R32_FLOAT, 0, offsetof(LectureParticle, age)},
+        {"COLOR", 0, Format::R32G32B32A32_FLOAT, 0, offsetof(LectureParticle, colour)}};
+    expectLayoutError(misspelt, {"LectureParticleIn::lifespan (LIFESPAN0) has no element in the input layout",
+                                 "it has: POSITION0, LIFETIME0, AGE0, COLOR0"});
 }
 
 TEST(SceneRegistry, RefusesBadEntriesAndServesGoodOnes) {

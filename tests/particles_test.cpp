@@ -20,6 +20,7 @@
 
 #include "raster/check.hpp"
 #include "raster/input_layout.hpp"
+#include "lecture_particle.hpp"
 #include "raster/particle_sort.hpp"
 #include "raster/thread_pool.hpp"
 
@@ -152,6 +153,33 @@ TEST(ParticleLayout, BindsToAVertexShaderInput) {
     EXPECT_EQ(fetch[0].srcOffset, offsetof(Particle, position));
     EXPECT_EQ(fetch[1].srcOffset, offsetof(Particle, colour));
     EXPECT_EQ(fetch[2].srcOffset, offsetof(Particle, size));
+}
+
+// Not the lecture's struct: the input-layout lab's Particle is the lecture's own (position, velocity,
+// lifespan, age, in that order) with the colour after them, 48 bytes. The library's layout bound to its
+// vertex shader input fetches age and lifespan swapped, and its COLOR (byte 36, 16 bytes) ends past the
+// lab's vertex: the draw's buffer check names that element and the field it feeds.
+TEST(ParticleLayout, IsNotTheLayoutOfTheLecturesStructInItsOwnOrder) {
+    using test::LectureParticle, test::LectureParticleIn;
+    const auto desc = particleInputLayout();
+    const InputLayout layout{std::span<const InputElementDesc>(desc)};
+    const auto fetch = layout.bind(LectureParticleIn::inputSignature(), sizeof(LectureParticleIn), "LectureParticleIn");
+    ASSERT_EQ(fetch.size(), 4u);
+    EXPECT_EQ(fetch[1].srcOffset, offsetof(LectureParticle, age)) << "LIFESPAN reads the lab's age";
+    EXPECT_EQ(fetch[2].srcOffset, offsetof(LectureParticle, lifespan)) << "AGE reads the lab's lifespan";
+    const VertexBuffer buffer = VertexBuffer::create(std::vector<LectureParticle>(3));
+    const VertexBuffer* slots[] = {&buffer};
+    try {
+        checkVertexBuffers(fetch, slots, 2, 0, 0);
+        ADD_FAILURE() << "a 48-byte vertex holds the library's COLOR at byte 36";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ErrorCode::LayoutMismatch);
+        EXPECT_NE(std::string(e.what()).find("element COLOR0 (feeding `colour`) at byte 36 + 16 bytes of "
+                                             "R32G32B32A32_FLOAT ends at byte 52"),
+                  std::string::npos)
+            << e.what();
+        EXPECT_NE(std::string(e.what()).find("stride of 48 bytes"), std::string::npos) << e.what();
+    }
 }
 
 // ---- Curves -----------------------------------------------------------------------------------------

@@ -95,7 +95,8 @@ std::vector<InputFetch> InputLayout::bind(std::span<const ShaderInputField> sign
             RASTER_REQUIRE(!overlap, LayoutMismatch, field + " overlaps another field of the signature");
         }
         program.push_back({it->inputSlot, it->byteOffset, it->format, f.offset, f.components,
-                           it->inputSlotClass == InputClassification::PerInstanceData, it->instanceDataStepRate});
+                           it->inputSlotClass == InputClassification::PerInstanceData, it->instanceDataStepRate,
+                           f.semanticName, f.semanticIndex, f.memberName});
     }
     return program;
 }
@@ -107,10 +108,16 @@ void checkVertexBuffers(std::span<const InputFetch> program, std::span<const Ver
         RASTER_REQUIRE(p.slot < slots.size() && slots[p.slot] != nullptr, LayoutMismatch,
                        where + " is read by the input layout but no vertex buffer is bound to it");
         const VertexBuffer& vb = *slots[p.slot];
-        RASTER_REQUIRE(uint64_t(p.srcOffset) + formatSize(p.format) <= vb.stride(), LayoutMismatch,
-                       where + ": element at byte " + std::to_string(p.srcOffset) + " (" +
-                           std::string(formatName(p.format)) + ") does not fit the buffer's stride of " +
-                           std::to_string(vb.stride()) + " bytes");
+        // A layout written for another struct (another field order, a copied offset) reads past the
+        // vertex: name the element and the field it feeds, so that the culprit is the first word read.
+        const uint64_t end = uint64_t(p.srcOffset) + formatSize(p.format);
+        RASTER_REQUIRE(end <= vb.stride(), LayoutMismatch,
+                       where + ": element " + semanticLabel(p.semanticName, p.semanticIndex) + " (feeding `" +
+                           p.fieldName + "`) at byte " + std::to_string(p.srcOffset) + " + " +
+                           std::to_string(formatSize(p.format)) + " bytes of " + std::string(formatName(p.format)) +
+                           " ends at byte " + std::to_string(end) + ", which does not fit the buffer's stride of " +
+                           std::to_string(vb.stride()) + " bytes (the size of its vertex struct): check the "
+                           "element's AlignedByteOffset (offsetof) and Format");
         const uint64_t last =
             p.perInstance ? startInstance + (p.stepRate == 0 ? 0 : maxInstance / p.stepRate) : maxVertex;
         RASTER_REQUIRE(last < vb.elementCount(), OutOfRange,

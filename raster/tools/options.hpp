@@ -118,9 +118,11 @@ inline void addSizeOptions(CLI::App& command, SceneOptions& options) {
     addWholeNumber(command, "--height", options.height, 1, RenderTarget::kMaxSize, "image height in pixels");
 }
 
-// --count, --cubes, --fog: what the lecture's scenes hold (bench, trace, view).
+// --count, --seed, --cubes, --fog: what the lecture's scenes and the labs hold (bench, trace, view).
 inline void addContentOptions(CLI::App& command, SceneOptions& options) {
     addWholeNumber(command, "--count", options.count, 0, 50'000'000, "particles: the number of billboards");
+    addWholeNumber(command, "--seed", options.seed, 0, UINT32_MAX,
+                   "particles: the simulation's seed (labs that simulate; the lecture's scenes have none)");
     addWholeNumber(command, "--cubes", options.cubes, 0, 1024, "fog: cubes per side of the grid");
     command
         .add_option_function<std::string>(

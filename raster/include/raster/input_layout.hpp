@@ -82,6 +82,11 @@ struct InputFetch {
     uint32_t dstComponents = 0;   // floats the field holds
     bool perInstance = false;
     uint32_t stepRate = 0;
+    // For messages: the element's semantic and the shader's field it feeds, as the signature names
+    // them (RASTER_INPUT's string literals, which outlive any draw).
+    const char* semanticName = "";
+    uint32_t semanticIndex = 0;
+    const char* fieldName = "";
 };
 
 class InputLayout {
@@ -124,7 +129,8 @@ void fetchVertex(std::span<const InputFetch> program, std::span<const VertexBuff
                  uint32_t vertex, uint32_t instance, uint32_t startInstance, std::byte* dst);
 
 // Throws Error(OutOfRange) or Error(LayoutMismatch) unless every slot the program reads is bound,
-// its stride holds the element, and vertex indices up to maxVertex and instance IDs up to
+// its stride holds the element (the message names the element's semantic, offset, format and the
+// field it feeds: a layout copied from another struct overruns it), and vertex indices up to maxVertex and instance IDs up to
 // maxInstance stay inside the buffers.
 void checkVertexBuffers(std::span<const InputFetch> program, std::span<const VertexBuffer* const> slots,
                         uint64_t maxVertex, uint64_t maxInstance, uint32_t startInstance);

@@ -26,6 +26,8 @@ struct SceneCamera {
 struct SceneOptions {
     uint32_t width = 1280, height = 720;
     uint32_t count = 10000;   // particles
+    uint32_t seed = 0;        // particles: the simulation's seed, in scenes that simulate (the labs');
+                              // the lecture's scenes' data are fixed functions of the count
     uint32_t cubes = 16;      // fog: cubes per side
     bool heightFog = true;    // fog: "height" (true) or "constant"
     std::string texture;      // particles: a PNG to use instead of the generated fire texture

@@ -61,6 +61,132 @@ void addIfDifferent(std::vector<std::string>& out, const std::string& prefix, co
         out.push_back(prefix + "your " + what + " is " + yours + " where the solution's is " + theirs);
 }
 
+// ---- The input assembler and the vertex shader, vertex by vertex ----
+
+// Records to compare for input primitive p: a point list's own vertex (record p: the fetch order of a
+// draw that is not indexed, instances counted on), else every record both traces hold, in order.
+std::vector<size_t> verticesOf(const TraceDraw& a, const TraceDraw& b, uint32_t p) {
+    const size_t n = std::min(a.vertices.size(), b.vertices.size());
+    if (a.topology == Topology::PointList) return p < n ? std::vector<size_t>{p} : std::vector<size_t>{};
+    std::vector<size_t> all(n);
+    for (size_t i = 0; i < n; ++i) all[i] = i;
+    return all;
+}
+
+const TraceField* fieldNamed(const TraceDraw& d, const std::string& name) {
+    for (const TraceField& f : d.inputFields)
+        if (f.name == name) return &f;
+    return nullptr;
+}
+
+// A field's first `components` recorded floats; empty when the record is too short.
+std::vector<float> fieldValue(const TraceVertex& v, const TraceField& f, uint32_t components) {
+    if (f.offset + components > v.input.size()) return {};
+    return {v.input.begin() + f.offset, v.input.begin() + f.offset + components};
+}
+// "(a, b, c)", or "a" for one value.
+std::string values(const std::vector<float>& v) {
+    std::string out = v.size() > 1 ? "(" : "";
+    for (size_t i = 0; i < v.size(); ++i) out += fmt(i ? ", %.4g" : "%.4g", v[i]);
+    return out + (v.size() > 1 ? ")" : "");
+}
+bool same(const std::vector<float>& a, const std::vector<float>& b) {
+    return a.size() == b.size() &&
+           std::equal(a.begin(), a.end(), b.begin(), [](float x, float y) { return same(x, y); });
+}
+
+// What a wrong element reads instead, when the solution's input shows it: another field's value (an
+// offset copied from that field), or the defaults (0, 0, 0, 1) past the element's last component (a
+// format too narrow for the field).
+std::string inputHint(const TraceDraw& theirs, const TraceVertex& b, const TraceField& field,
+                      const std::vector<float>& mine, const std::vector<float>& solution) {
+    for (const TraceField& other : theirs.inputFields)
+        if (other.name != field.name && other.components >= mine.size() &&
+            same(fieldValue(b, other, uint32_t(mine.size())), mine))
+            return ": yours holds what the solution reads as " + other.name +
+                   " (is the element's AlignedByteOffset that field's offsetof?)";
+    static constexpr float kDefaults[4] = {0, 0, 0, 1};
+    for (size_t k = 1; k < mine.size(); ++k) {
+        bool defaults = true;
+        for (size_t c = k; c < mine.size(); ++c) defaults = defaults && mine[c] == kDefaults[c];
+        if (defaults && std::equal(mine.begin(), mine.begin() + long(k), solution.begin()))
+            return fmt(
+                ": yours has the first %zu component%s and the defaults (0, 0, 0, 1) after them (is the "
+                "element's Format too narrow for the field?)",
+                k, k == 1 ? "" : "s");
+    }
+    return ": check the element's Format (the field's type) and AlignedByteOffset (offsetof of the field)";
+}
+
+// The vertex shader's input, field by field by semantic: what the input assembler handed it.
+std::optional<Found> inputDifference(const TraceDraw& yours, const TraceDraw& theirs, uint32_t p) {
+    for (const size_t i : verticesOf(yours, theirs, p)) {
+        const TraceVertex &a = yours.vertices[i], &b = theirs.vertices[i];
+        if (a.index != b.index || a.instance != b.instance) return std::nullopt;  // other draws: not the IA
+        for (const TraceField& f : yours.inputFields) {
+            const TraceField* g = fieldNamed(theirs, f.name);
+            if (!g) continue;
+            const uint32_t n = std::min(f.components, g->components);
+            const std::vector<float> mine = fieldValue(a, f, n), solution = fieldValue(b, *g, n);
+            if (mine.empty() || solution.empty() || same(mine, solution)) continue;
+            return Found{
+                DiagnosisStage::InputAssembler,
+                fmt("the input assembler fetched vertex %u (instance %u) with ", a.index, a.instance) +
+                    f.name + " = " + values(mine) + " where the solution's is " + values(solution) +
+                    inputHint(theirs, b, *g, mine, solution)};
+        }
+    }
+    return std::nullopt;
+}
+
+// Clip-space position to pixels, for the whole-target viewport every scene sets (beginSceneFrame).
+glm::vec2 toPixels(const glm::vec4& clip, const Trace& trace) {
+    return {(clip.x / clip.w * 0.5f + 0.5f) * float(trace.width()),
+            (0.5f - clip.y / clip.w * 0.5f) * float(trace.height())};
+}
+
+// "SV_Position is (...) where the solution's is (...): on screen (...) against (...); x differs by ..."
+std::string positionText(const glm::vec4& mine, const glm::vec4& theirs, const Trace& trace) {
+    const glm::vec2 s = toPixels(mine, trace), t = toPixels(theirs, trace);
+    std::string text =
+        fmt("SV_Position is (%.4g, %.4g, %.4g, %.4g) where the solution's is (%.4g, %.4g, %.4g, "
+            "%.4g): on screen (%.2f, %.2f) against (%.2f, %.2f)",
+            mine.x, mine.y, mine.z, mine.w, theirs.x, theirs.y, theirs.z, theirs.w, s.x, s.y, t.x, t.y);
+    if (s.x != t.x) text += fmt("; x differs by %+.2f pixel", s.x - t.x);
+    if (s.y != t.y) text += fmt("; y differs by %+.2f pixel", s.y - t.y);
+    return text;
+}
+
+// The vertex shader's outputs given the same inputs (inputDifference found none).
+std::optional<Found> vsOutputDifference(const Trace& trace, const TraceDraw& yours, const TraceDraw& theirs,
+                                        uint32_t p) {
+    if (yours.vsFloats != theirs.vsFloats || yours.vsPosition != theirs.vsPosition) return std::nullopt;
+    const uint32_t at = yours.vsPosition;
+    for (const size_t i : verticesOf(yours, theirs, p)) {
+        const TraceVertex &a = yours.vertices[i], &b = theirs.vertices[i];
+        if (a.index != b.index || a.instance != b.instance) return std::nullopt;
+        const size_t n = std::min(a.output.size(), b.output.size());
+        if (at + 4 <= n) {
+            const glm::vec4 mine(a.output[at], a.output[at + 1], a.output[at + 2], a.output[at + 3]);
+            const glm::vec4 solution(b.output[at], b.output[at + 1], b.output[at + 2], b.output[at + 3]);
+            if (!same(mine, solution))
+                return Found{
+                    DiagnosisStage::VertexShader,
+                    fmt("the vertex shader's output for vertex %u (instance %u), from the same input: its ",
+                        a.index, a.instance) +
+                        positionText(mine, solution, trace)};
+        }
+        for (size_t c = 0; c < n; ++c)
+            if (!same(a.output[c], b.output[c]))
+                return Found{
+                    DiagnosisStage::VertexShader,
+                    fmt("the vertex shader's output for vertex %u (instance %u), from the same input, "
+                        "differs in float %zu: %.4g where the solution's is %.4g",
+                        a.index, a.instance, c, a.output[c], b.output[c])};
+    }
+    return std::nullopt;
+}
+
 // ---- Geometry of one input primitive ----
 
 // Triangles a geometry shader's output strips make for input primitive p: n − 2 per strip of n.
@@ -94,12 +220,6 @@ std::optional<Found> gsCountDifference(const TraceDraw& yours, const TraceDraw& 
                      their_triangles == 1 ? "" : "s", their_vertices)};
 }
 
-// Clip-space position to pixels, for the whole-target viewport every scene sets (beginSceneFrame).
-glm::vec2 toPixels(const glm::vec4& clip, const Trace& trace) {
-    return {(clip.x / clip.w * 0.5f + 0.5f) * float(trace.width()),
-            (0.5f - clip.y / clip.w * 0.5f) * float(trace.height())};
-}
-
 // The SV_Position of each vertex the geometry shader emitted for input primitive p, in order.
 std::vector<glm::vec4> gsPositions(const TraceDraw& d, uint32_t p) {
     std::vector<glm::vec4> out;
@@ -117,14 +237,8 @@ std::optional<Found> gsPositionDifference(const Trace& yours, const TraceDraw& a
     const std::vector<glm::vec4> mine = gsPositions(a, p), theirs = gsPositions(b, p);
     for (size_t k = 0; k < std::min(mine.size(), theirs.size()); ++k) {
         if (same(mine[k], theirs[k])) continue;
-        const glm::vec2 s = toPixels(mine[k], yours), t = toPixels(theirs[k], yours);
         std::string text =
-            fmt("the geometry shader output vertex %zu's SV_Position is (%.4g, %.4g, %.4g, %.4g) where the "
-                "solution's is (%.4g, %.4g, %.4g, %.4g): on screen (%.2f, %.2f) against (%.2f, %.2f)",
-                k, mine[k].x, mine[k].y, mine[k].z, mine[k].w, theirs[k].x, theirs[k].y, theirs[k].z,
-                theirs[k].w, s.x, s.y, t.x, t.y);
-        if (s.x != t.x) text += fmt("; x differs by %+.2f pixel", s.x - t.x);
-        if (s.y != t.y) text += fmt("; y differs by %+.2f pixel", s.y - t.y);
+            fmt("the geometry shader output vertex %zu's ", k) + positionText(mine[k], theirs[k], yours);
         if (mine[k].w != theirs[k].w)
             text += fmt(
                 "; w is %.4g where the solution's is %.4g: the rasterizer divides by w itself (was an offset "
@@ -199,6 +313,8 @@ std::optional<Found> geometryDifference(const Trace& yours, const Trace& theirs,
                                                (b->geometryShader.empty() ? "has none" : "has one")};
     if (a->topology != b->topology)
         return Found{DiagnosisStage::Draw, "the draw's primitive topology differs"};
+    if (auto found = inputDifference(*a, *b, p)) return found;
+    if (auto found = vsOutputDifference(yours, *a, *b, p)) return found;
     if (auto found = gsCountDifference(*a, *b, p)) return found;
     if (auto found = gsPositionDifference(yours, *a, *b, p)) return found;
     if (auto found = positionDifference(*a, *b, p)) return found;
@@ -374,6 +490,8 @@ const char* stageName(DiagnosisStage stage) {
             return "none";
         case DiagnosisStage::Draw:
             return "draw";
+        case DiagnosisStage::InputAssembler:
+            return "input assembler";
         case DiagnosisStage::VertexShader:
             return "vertex shader";
         case DiagnosisStage::GeometryShader:

@@ -14,10 +14,13 @@
 // by, in that order. For each key, in order, the stages are compared from first to last, and the first
 // difference found is the diagnosis:
 //   1. the draw itself: a draw the other frame lacks; shaders or topology (DiagnosisStage::Draw)
-//   2. geometry of that input primitive: the geometry shader's vertex count (as triangles of its strips)
-//      and output positions, else the vertex shader's output positions, as pixels after setup
+//   2. geometry of that input primitive: the vertex shader's inputs as the input assembler fetched them,
+//      field by field by semantic (InputAssembler: a wrong offset or format in the input layout), then
+//      its outputs given the same inputs (VertexShader; positions also in pixels); the geometry shader's
+//      vertex count (as triangles of its strips) and output positions, else the positions after setup
 //      (GeometryShader, VertexShader); the primitives set up from it (Rasterizer: a fragment one side
-//      has and the other not, with the same geometry)
+//      has and the other not, with the same geometry). The vertices compared are the primitive's own
+//      for a point list (vertex p of primitive p) and every recorded one otherwise.
 //   3. the fragment's depth test and depth write (DepthTest)
 //   4. the pixel shader's output (PixelShader)
 //   5. the colour after the output merger, given the same shader output and colour before (Blend)
@@ -41,6 +44,7 @@ namespace raster::grade {
 enum class DiagnosisStage {
     None,
     Draw,
+    InputAssembler,
     VertexShader,
     GeometryShader,
     Rasterizer,
@@ -48,7 +52,8 @@ enum class DiagnosisStage {
     PixelShader,
     Blend
 };
-// "none", "draw", "vertex shader", "geometry shader", "rasterizer", "depth test", "pixel shader", "blend".
+// "none", "draw", "input assembler", "vertex shader", "geometry shader", "rasterizer", "depth test",
+// "pixel shader", "blend".
 const char* stageName(DiagnosisStage stage);
 
 struct Diagnosis {

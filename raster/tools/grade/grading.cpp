@@ -47,11 +47,12 @@ struct FieldReader {
     }
 
     SceneOptions options(const Json& j) const {
-        onlyKnown(j, {"width", "height", "count", "cubes", "fog", "camera"});
+        onlyKnown(j, {"width", "height", "count", "seed", "cubes", "fog", "camera"});
         SceneOptions o;
         if (j.contains("width")) o.width = whole(j["width"], "width", 1, 8192);
         if (j.contains("height")) o.height = whole(j["height"], "height", 1, 8192);
         if (j.contains("count")) o.count = whole(j["count"], "count", 0, 50'000'000);
+        if (j.contains("seed")) o.seed = whole(j["seed"], "seed", 0, UINT32_MAX);
         if (j.contains("cubes")) o.cubes = whole(j["cubes"], "cubes", 0, 1024);
         if (j.contains("fog")) {
             const std::string fog = text(j["fog"], "fog");
@@ -149,6 +150,7 @@ std::vector<std::string> runnerOptionArgs(const SceneOptions& o) {
     std::vector<std::string> args = {"--width",  std::to_string(o.width),
                                      "--height", std::to_string(o.height),
                                      "--count",  std::to_string(o.count),
+                                     "--seed",   std::to_string(o.seed),
                                      "--cubes",  std::to_string(o.cubes),
                                      "--fog",    o.heightFog ? "height" : "constant"};
     if (o.camera) {

@@ -3,7 +3,7 @@
 //   labs/<lab>/grading.json        the public scenes: those the lab's README names, which students see
 //                                  and grade themselves on (raster grade --public)
 //   solutions/<lab>/grading.json   the hidden scenes: variations a student has not seen (other cameras,
-//                                  sizes, counts), kept with the solution by lecturers
+//                                  sizes, counts, seeds), kept with the solution by lecturers
 //
 // Both files have the same form, one JSON object:
 //
@@ -15,7 +15,7 @@
 //       "comparison": {"method": "threshold", "rgba": [1, 1, 1, 1]}}]}
 //
 // name: [a-z0-9_-], unique within the lab (it names the PNGs); number: Gradescope's test number,
-// "1.1"; points: > 0; options: raster::SceneOptions overrides (width, height, count, cubes, fog
+// "1.1"; points: > 0; options: raster::SceneOptions overrides (width, height, count, seed, cubes, fog
 // "constant"|"height", camera {eye, target}), every one optional, unset ones keep SceneOptions'
 // defaults (camera unset: the lab's registered camera); comparison: what raster::Comparison::parse
 // reads. Unknown fields are errors (a misspelt "ponts" must not grade a scene for 0 points).

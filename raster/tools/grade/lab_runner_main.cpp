@@ -4,7 +4,7 @@
 // and writes the trace as JSON too (grade/trace_json.hpp), for the grader's diagnosis.
 //
 //   lab_runner --scene billboards --out scene.png --width 320 --height 180 --count 500
-//              [--camera EX,EY,EZ,TX,TY,TZ] [--cubes N] [--fog constant|height] [--threads N]
+//              [--camera EX,EY,EZ,TX,TY,TZ] [--seed N] [--cubes N] [--fog constant|height] [--threads N]
 //              [--path fast|plain|reference] [--pixel X,Y --history FILE]
 //
 // Exit status 0 when the image was written; 1 with a message on stderr for anything else (an option it
@@ -83,6 +83,8 @@ RunnerArgs parseArgs(int argc, char** argv) {
             a.options.height = whole(option, value);
         else if (option == "--count")
             a.options.count = whole(option, value);
+        else if (option == "--seed")
+            a.options.seed = whole(option, value);
         else if (option == "--cubes")
             a.options.cubes = whole(option, value);
         else if (option == "--threads")

@@ -43,8 +43,10 @@ Json rasterizerJson(const TraceDraw& d) {
 }
 
 Json drawJson(const TraceDraw& d) {
-    Json vertices = Json::array(), gs = Json::array(), primitives = Json::array();
-    for (const TraceVertex& v : d.vertices) vertices.push_back({v.instance, v.index, floats(v.output)});
+    Json vertices = Json::array(), gs = Json::array(), primitives = Json::array(), fields = Json::array();
+    for (const TraceField& f : d.inputFields) fields.push_back({f.name, f.offset, f.components});
+    for (const TraceVertex& v : d.vertices)
+        vertices.push_back({v.instance, v.index, floats(v.output), floats(v.input)});
     for (const TraceGsVertex& v : d.gsVertices) gs.push_back({v.primitive, v.startsStrip, floats(v.values)});
     for (const TracePrimitive& p : d.primitives) {
         Json screen = Json::array();
@@ -61,6 +63,7 @@ Json drawJson(const TraceDraw& d) {
         {"layout", {d.vsPosition, d.gsPosition, d.vsFloats, d.gsFloats}},
         {"totals", {d.verticesTotal, d.gsVerticesTotal, d.primitivesTotal}},
         {"skipped", d.skipped},
+        {"inputFields", std::move(fields)},
         {"vertices", std::move(vertices)},
         {"gsVertices", std::move(gs)},
         {"primitives", std::move(primitives)}};
@@ -164,12 +167,27 @@ struct Reader {
         d.coverageTest = flag(item(j, 9, "rasterizer"));
     }
 
+    // The vertex shader's input signature: each field inside the recorded input (checked per vertex).
+    void inputFields(const Json& j, TraceDraw& d) const {
+        for (const Json& f : array(at(j, "inputFields"), "inputFields")) {
+            const uint32_t offset = uint32_t(whole(item(f, 1, "inputField"), 1u << 16));
+            const uint32_t components = uint32_t(whole(item(f, 2, "inputField"), 4));
+            if (components == 0) fail("an input field of 0 components");
+            d.inputFields.push_back({text(item(f, 0, "inputField")), offset, components});
+        }
+    }
+
     void geometry(const Json& j, TraceDraw& d) const {
-        for (const Json& v : array(at(j, "vertices"), "vertices"))
-            d.vertices.push_back({uint32_t(whole(item(v, 0, "vertex"), UINT32_MAX)),
-                                  uint32_t(whole(item(v, 1, "vertex"), UINT32_MAX)),
-                                  {},
-                                  reals(item(v, 2, "vertex"))});
+        inputFields(j, d);
+        for (const Json& v : array(at(j, "vertices"), "vertices")) {
+            TraceVertex vertex{uint32_t(whole(item(v, 0, "vertex"), UINT32_MAX)),
+                               uint32_t(whole(item(v, 1, "vertex"), UINT32_MAX)), reals(item(v, 3, "vertex")),
+                               reals(item(v, 2, "vertex"))};
+            for (const TraceField& f : d.inputFields)
+                if (f.offset + f.components > vertex.input.size())
+                    fail("input field " + f.name + " lies outside a vertex's recorded input");
+            d.vertices.push_back(std::move(vertex));
+        }
         for (const Json& v : array(at(j, "gsVertices"), "gsVertices"))
             d.gsVertices.push_back({uint32_t(whole(item(v, 0, "gsVertex"), UINT32_MAX)),
                                     flag(item(v, 1, "gsVertex")), reals(item(v, 2, "gsVertex"))});

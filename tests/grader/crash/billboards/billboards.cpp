@@ -28,7 +28,7 @@ struct GsBillboard {
 
     void operator()(const Point<BillboardVertex>& in, TriangleStream<BillboardCorner, 4>& stream) const {
         const glm::vec4 c = viewProj * in[0].position;
-        int* volatile nowhere = nullptr;
+        volatile int* volatile nowhere = nullptr;  // both volatile: no optimiser may drop the store
         *nowhere = 1;  // the defect
         // LAB 1: open the sprite in clip space. The offset is added before the division by w, so the
         // sprite keeps its world size; the strip order makes two triangles (0 1 2) and (1 3 2).
