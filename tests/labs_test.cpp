@@ -39,8 +39,9 @@ void expectInvalidArgument(const auto& f, const std::string& part) {
 
 TEST(Labs, BillboardsIsRegisteredWithItsSolution) {
     const std::vector<std::string> names = sceneNames();
-    EXPECT_EQ(names[0], "particles");
-    EXPECT_EQ(names[1], "fog");
+    EXPECT_EQ(names[0], "fire");
+    EXPECT_EQ(names[1], "particles");
+    EXPECT_EQ(names[2], "fog");
     EXPECT_NE(std::find(names.begin(), names.end(), "billboards"), names.end());
     EXPECT_NE(std::find(names.begin(), names.end(), "billboards@solution"), names.end());
     EXPECT_EQ(solutionSceneOf("billboards"), "billboards@solution");

@@ -182,8 +182,8 @@ TEST(Curve, HoldsItsEndValuesOutsideItsKeys) {
     EXPECT_EQ(constant(1.0f), 0.7f);
 }
 
-TEST(Gradient, ExactAtKeysLinearAtMidpoints) {
-    const Gradient g{{0.0f, {1.0f, 0.9f, 0.5f}}, {0.5f, {1.0f, 0.3f, 0.0f}}, {1.0f, {0.1f, 0.1f, 0.1f}}};
+TEST(ColourGradient, ExactAtKeysLinearAtMidpoints) {
+    const ColourGradient g{{0.0f, {1.0f, 0.9f, 0.5f}}, {0.5f, {1.0f, 0.3f, 0.0f}}, {1.0f, {0.1f, 0.1f, 0.1f}}};
     EXPECT_EQ(g(0.0f), glm::vec3(1.0f, 0.9f, 0.5f));
     EXPECT_EQ(g(0.5f), glm::vec3(1.0f, 0.3f, 0.0f));
     EXPECT_EQ(g(1.0f), glm::vec3(0.1f, 0.1f, 0.1f));
@@ -211,7 +211,7 @@ TEST(Curve, BadKeysThrowNamingTheKey) {
     EXPECT_NE(message([] { Curve({{kNaN, 1.0f}}); }).find("keys[0].t"), std::string::npos);
     EXPECT_NE(message([] { Curve({{0.0f, kInf}}); }).find("keys[0].value"), std::string::npos);
     EXPECT_NE(message([] { Curve(std::vector<Curve::Key>{}); }).find("at least one key"), std::string::npos);
-    EXPECT_NE(message([] { Gradient({{0.0f, glm::vec3(1, kNaN, 0)}}); }).find("keys[0].value"), std::string::npos);
+    EXPECT_NE(message([] { ColourGradient({{0.0f, glm::vec3(1, kNaN, 0)}}); }).find("keys[0].value"), std::string::npos);
 }
 
 // ---- Emitters ---------------------------------------------------------------------------------------
@@ -711,7 +711,7 @@ TEST(Upload, WritesTheLivingAsTheLectureStructWithTheirCurves) {
     Emitter e = oneVelocity({1, 2, 3}, {0, 1, 0});
     e.sizeMin = e.sizeMax = 0.5f;
     e.sizeOverLife = Curve{{0.0f, 1.0f}, {1.0f, 3.0f}};
-    e.colourOverLife = Gradient{{0.0f, {1, 1, 0}}, {1.0f, {1, 0, 0}}};
+    e.colourOverLife = ColourGradient{{0.0f, {1, 1, 0}}, {1.0f, {1, 0, 0}}};
     e.opacityOverLife = Curve{{0.0f, 1.0f}, {1.0f, 0.0f}};
     ParticleSystemDesc d = burstDesc(e, 3, 1.0f);
     d.timeStep = 0.125f;

@@ -9,7 +9,7 @@
 //   raster::Emitter fire = raster::Emitter::disc({0, 0, 0}, {0, 1, 0}, 0.5f);
 //   fire.rate = 4000;                                   // particles per second
 //   fire.velocity = {{0, 1, 0}, 0.3f, 0.5f, 1.0f};      // axis, half-angle (rad), speed min/max (m/s)
-//   fire.colourOverLife = raster::Gradient{{0, {1, 0.9f, 0.5f}}, {1, {0.6f, 0.1f, 0}}};
+//   fire.colourOverLife = raster::ColourGradient{{0, {1, 0.9f, 0.5f}}, {1, {0.6f, 0.1f, 0}}};
 //   desc.emitters = {fire};
 //   desc.effectors = {raster::Buoyancy{{0, 1, 0}, 2.0f, 0.2f}, raster::Turbulence{0.8f, 1.5f}};
 //   raster::ParticleSystem system(desc, &pool);         // pool: optional raster::ThreadPool*
@@ -120,7 +120,9 @@ private:
     std::vector<Key> keys_;
 };
 using Curve = PiecewiseLinear<float>;         // size (a factor on the particle's birth size), opacity
-using Gradient = PiecewiseLinear<glm::vec3>;  // colour, linear rgb
+// (Not `Gradient`: raster::Gradient<T> is a pixel's screen-space derivatives, shader_context.hpp,
+// which every header of the pipeline includes.)
+using ColourGradient = PiecewiseLinear<glm::vec3>;  // colour, linear rgb
 extern template class PiecewiseLinear<float>;
 extern template class PiecewiseLinear<glm::vec3>;
 
@@ -167,7 +169,7 @@ struct Emitter {
     // Over normalized age: size = birth size · sizeOverLife(t), colour = (colourOverLife(t),
     // opacityOverLife(t)).
     Curve sizeOverLife{1.0f};
-    Gradient colourOverLife{glm::vec3(1.0f)};
+    ColourGradient colourOverLife{glm::vec3(1.0f)};
     Curve opacityOverLife{1.0f};
 
     static Emitter point(glm::vec3 position);
