@@ -82,6 +82,19 @@ bad --texture "" bench particles --texture
 bad --no-error maybe bench particles --no-error=maybe
 
 bad --out-dir "" render fog --out-dir
+# Time: --frames, --fps and --time (render), --time and --seed (bench).
+bad --frames 0 render fire --frames 0
+bad --frames x render fire --frames x
+bad --fps nan render fire --frames 2 --fps nan
+bad --fps 0 render fire --frames 2 --fps 0
+bad --fps -5 render fire --frames 2 --fps -5
+bad --fps inf render fire --frames 2 --fps inf
+bad --time -1 render fire --time -1
+bad --time nan render fire --time nan
+bad --time 601 render fire --time 601
+bad --time "" bench fire --time
+bad --seed -1 bench fire --seed -1
+bad --frames "static" render fog --frames 2
 bad --list maybe render --list=maybe
 bad --view maybe render fog --view=maybe
 
@@ -156,9 +169,9 @@ helps() {
     grep -qF -- "$option" "$tmp/out" || fail "raster $command --help does not list $option"
   done
 }
-helps bench --width --height --count --seed --cubes --fog --texture --frames --threads --out --reference --plain --no-error \
-  --turbulence particles-sim
-helps render --out-dir --width --height --reference --plain --view --list
+helps bench --width --height --count --seed --cubes --fog --time --texture --frames --threads --out --reference --plain \
+  --no-error --turbulence particles-sim
+helps render --out-dir --width --height --count --seed --time --frames --fps --reference --plain --view --list
 helps trace --stats --pixel --json --draw --limit --width --height --count --seed --cubes --fog --threads --reference --plain
 helps view --size --count --seed --cubes --fog --threads --reference --plain --headless --script --screenshot-dir \
   --screenshot-window --solution "keys:"
@@ -200,10 +213,26 @@ grep -q '^raster particles-sim count=5000 turbulence=1 ms_per_step_median=[0-9.]
   fail "bench particles-sim printed: $(cat "$tmp/out")"
 run 1 bench particles-sim --count 0
 says "particles-sim needs --count of at least 1"
+# render --frames: N files <scene>_0000.png ..., frame k at --time + k/--fps: frame 1 of a sequence
+# from 0.4 s at 10 frames a second is the picture at 0.5 s, bit for bit; frames 0 and 1 differ.
+run 0 render fire --frames 3 --fps 10 --time 0.4 --width 48 --height 32 --count 300 --out-dir "$tmp/frames"
+for k in 0000 0001 0002; do
+  [[ $(png_size "$tmp/frames/fire_$k.png") == 48x32 ]] || fail "render --frames 3 did not write fire_$k.png"
+done
+[[ ! -e $tmp/frames/fire_0003.png && ! -e $tmp/frames/fire.png ]] || fail "render --frames 3 wrote more: $(ls "$tmp/frames")"
+run 0 render fire --time 0.5 --width 48 --height 32 --count 300 --out-dir "$tmp/frames"
+cmp -s "$tmp/frames/fire.png" "$tmp/frames/fire_0001.png" || fail "frame 1 from 0.4 s at 10 fps is not the picture at 0.5 s"
+! cmp -s "$tmp/frames/fire_0000.png" "$tmp/frames/fire_0001.png" || fail "frames 0 and 1 of the fire are the same"
+# --frames without a scene: the animated ones only.
+run 0 render --frames 1 --width 16 --height 16 --out-dir "$tmp/anim"
+[[ $(ls "$tmp/anim") == fire_0000.png ]] || fail "render --frames 1 wrote $(ls "$tmp/anim")"
+run 0 bench fire --width 64 --height 36 --frames 2 --count 200 --time 1 --seed 3 --no-error
+grep -q '^raster fire 64x36 ms_per_frame_median=[0-9.]* frames=2$' "$tmp/out" || fail "bench fire printed: $(cat "$tmp/out")"
 run 0 trace particles --count 20 --width 64 --height 36 --pixel 32,18 --json --threads 1
 grep -q '^{"pixel":\[32,18\]' "$tmp/out" || fail "trace --pixel 32,18 --json printed: $(head -c 200 "$tmp/out")"
 run 0 render --list
 grep -q '^particles ' "$tmp/out" || fail "render --list lacks particles"
+[[ $(head -n 1 "$tmp/out") == fire\ * ]] || fail "render --list does not begin with fire"
 SDL_VIDEODRIVER=offscreen run 0 view particles --headless --size 64x36 --count 20 --script "N S" \
   --screenshot-dir "$tmp/shots"
 [[ $(png_size "$tmp/shots/particles-0001.png") == 64x36 ]] || fail "view --size 64x36 saved another size"

@@ -127,21 +127,22 @@ void addSoup(Builder& b, XY panel, double width, double height, uint32_t count) 
 }  // namespace
 
 CoverageSceneData::CoverageSceneData(const SceneOptions& o) {
-    RASTER_REQUIRE(o.count <= kMaxSoup, InvalidArgument,
-                   "rasterizer: count " + std::to_string(o.count) + " is above " + std::to_string(kMaxSoup) +
+    const uint32_t count = o.count.value_or(kDefaultParticleCount);
+    RASTER_REQUIRE(count <= kMaxSoup, InvalidArgument,
+                   "rasterizer: count " + std::to_string(count) + " is above " + std::to_string(kMaxSoup) +
                        " (the small triangles of the last quarter)");
     const double w = std::floor(o.width / 2.0), h = std::floor(o.height / 2.0);
     Builder b;
     addHuge(b, {std::floor(o.width / 2.0) + 0.5, std::floor(o.height / 2.0) + 0.5});
     addFan(b, {std::floor(w / 2) + 0.5, std::floor(h / 2) + 0.5}, std::floor(std::min(w, h) * 0.42),
-           8 + 4 * (o.count % 5));
-    const uint32_t cell = 5 + o.count % 4;
+           8 + 4 * (count % 5));
+    const uint32_t cell = 5 + count % 4;
     const auto cells = [&](double extent) {
         return std::min<uint32_t>(48, uint32_t(std::max(0.0, extent - 16) / cell));
     };
     addLattice(b, {w + 8.5, 8.5}, cell, cells(w), cells(h));
     addSlivers(b, {0, h}, w, h);
-    addSoup(b, {w, h}, w, h, o.count);
+    addSoup(b, {w, h}, w, h, count);
 
     // The camera: a rotation about the image's centre by the eye's azimuth and a zoom.
     const SceneCamera camera = o.camera.value_or(SceneCamera{{0, 0, 1}, {0, 0, 0}});

@@ -1,5 +1,5 @@
-// The built-in benchmark scenes (../shared/bench/SCENES.md), one translation unit each so that a
-// build compiles them side by side: scene_particles.cpp and scene_fog.cpp. Internal to the library;
+// The built-in scenes, one translation unit each so that a build compiles them side by side: the
+// benchmark's (../shared/bench/SCENES.md) scene_particles.cpp and scene_fog.cpp, and scene_fire.cpp. Internal to the library;
 // users reach them through makeScene (raster/scenes.hpp).
 #pragma once
 
@@ -12,9 +12,12 @@ namespace raster {
 // SCENES.md's cameras. constexpr, so initialised before any lab's registration reads one.
 constexpr SceneCamera kParticlesCamera{{0, 0.3f, 4}, {0, 0, 0}};
 constexpr SceneCamera kFogCamera{{0, 1.5f, 6}, {0, 0.5f, -10}};
+// The fire's: SCENES.md's particles camera brought closer and lowered to the flames.
+constexpr SceneCamera kFireCamera{{0, -0.1f, 2.5f}, {0, -0.55f, 0}};
 
 // Options already checked by makeScene.
 std::unique_ptr<Scene> makeParticlesScene(const SceneOptions& options);
 std::unique_ptr<Scene> makeFogScene(const SceneOptions& options);
+std::unique_ptr<Scene> makeFireScene(const SceneOptions& options);
 
 }  // namespace raster

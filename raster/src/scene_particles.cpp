@@ -37,7 +37,8 @@ glm::vec3 particlePosition(uint32_t i) {
 }
 
 ParticleSceneData::ParticleSceneData(const SceneOptions& o)
-    : texture(o.texture.empty() ? makeFireTexture() : Texture2D::fromPng(o.texture)), count(o.count) {
+    : texture(o.texture.empty() ? makeFireTexture() : Texture2D::fromPng(o.texture)),
+      count(o.count.value_or(kDefaultParticleCount)) {
     const glm::mat4 proj = sceneProjection(o);
     viewProj = proj * sceneView(o.camera.value_or(kParticlesCamera));
     const float h = 0.08f;
@@ -47,9 +48,9 @@ ParticleSceneData::ParticleSceneData(const SceneOptions& o)
                                               {-0.6f, -1.2f, 0}, {0.6f, 0.4f, 0},  {-0.6f, 0.4f, 0}};
     occluder = VertexBuffer::create(triangles);
     std::vector<glm::vec3> positions;
-    allocateOrThrow("the positions of " + std::to_string(o.count) + " particles", byteCount(o.count, sizeof(glm::vec3)),
-                    [&] { positions.resize(o.count); });
-    for (uint32_t i = 0; i < o.count; ++i) positions[i] = particlePosition(i);
+    allocateOrThrow("the positions of " + std::to_string(count) + " particles", byteCount(count, sizeof(glm::vec3)),
+                    [&] { positions.resize(count); });
+    for (uint32_t i = 0; i < count; ++i) positions[i] = particlePosition(i);
     particles = VertexBuffer::create(positions);
     const InputElementDesc desc[] = {{"POSITION", 0, Format::R32G32B32_FLOAT, 0, 0}};
     layout = InputLayout(desc);

@@ -1,6 +1,7 @@
 #include "raster/scenes.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <map>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -14,6 +15,24 @@ glm::mat4 sceneProjection(const SceneOptions& o) {
 }
 
 glm::mat4 sceneView(const SceneCamera& c) { return glm::lookAtRH(c.eye, c.target, glm::vec3(0, 1, 0)); }
+
+namespace {
+
+// A time in seconds as an error message shows it: %g, so -1 and 0.5 read as such, NaN as nan.
+std::string secondsText(double seconds) {
+    char text[48];
+    std::snprintf(text, sizeof text, "%.9g s", seconds);
+    return text;
+}
+
+}  // namespace
+
+void Scene::advance(double seconds) {
+    RASTER_REQUIRE(std::isfinite(seconds) && seconds >= 0.0, InvalidArgument,
+                   "scene '" + std::string(name()) + "': advance by " + secondsText(seconds) +
+                       ": the time must be finite and >= 0");
+    advanceBy(seconds);
+}
 
 void beginSceneFrame(Context& context, RenderTarget& color, DepthTarget& depth) {
     context.clearRenderTarget(color, {0, 0, 0, 1});
@@ -53,7 +72,7 @@ void registerScene(SceneEntry entry) {
     for (char c : n)
         RASTER_REQUIRE((c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' || c == '-' || c == '@',
                        InvalidArgument, "scene name '" + n + "' may hold only a-z, 0-9, _, - and @");
-    RASTER_REQUIRE(n != "particles" && n != "fog" && !registry().contains(n), InvalidArgument,
+    RASTER_REQUIRE(n != "fire" && n != "particles" && n != "fog" && !registry().contains(n), InvalidArgument,
                    "scene '" + n + "' is registered twice (two labs of one name?)");
     RASTER_REQUIRE(entry.make != nullptr, InvalidArgument, "scene '" + n + "' is registered without a factory");
     registry().emplace(n, std::move(entry));
@@ -71,12 +90,13 @@ std::string solutionSceneOf(std::string_view name) {
 }
 
 std::vector<std::string> sceneNames() {
-    std::vector<std::string> names = {"particles", "fog"};
+    std::vector<std::string> names = {"fire", "particles", "fog"};
     for (const auto& [name, entry] : registry()) names.push_back(name);
     return names;
 }
 
 SceneCamera defaultCamera(std::string_view name) {
+    if (name == "fire") return kFireCamera;
     if (name == "particles") return kParticlesCamera;
     if (name == "fog") return kFogCamera;
     if (const SceneEntry* entry = findRegisteredScene(name)) return entry->camera;
@@ -104,11 +124,17 @@ std::unique_ptr<Scene> makeScene(std::string_view name, const SceneOptions& opti
                        "camera eye " + text(c.eye) + " and target " + text(c.target) +
                            " do not make a view direction (they must be finite, apart, and not one above the other)");
     }
-    if (name == "particles") {
-        RASTER_REQUIRE(options.count <= 50'000'000, InvalidArgument,
-                       "particle count " + std::to_string(options.count) + " is above 50000000");
-        return makeParticlesScene(options);
+    if (options.time) {
+        const double t = *options.time;
+        RASTER_REQUIRE(std::isfinite(t) && t >= 0.0 && t <= kMaxStartTime, InvalidArgument,
+                       "start time " + secondsText(t) + " is outside [0, " + secondsText(kMaxStartTime) + "]");
     }
+    if (options.count) {
+        RASTER_REQUIRE(*options.count <= 50'000'000, InvalidArgument,
+                       "particle count " + std::to_string(*options.count) + " is above 50000000");
+    }
+    if (name == "fire") return makeFireScene(options);
+    if (name == "particles") return makeParticlesScene(options);
     if (name == "fog") {
         RASTER_REQUIRE(options.cubes <= 1024, InvalidArgument,
                        "cube count " + std::to_string(options.cubes) + " per side is above 1024");

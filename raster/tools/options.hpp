@@ -4,8 +4,11 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <functional>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -37,6 +40,48 @@ inline CLI::Option* addWholeNumber(CLI::App& command, const std::string& name, u
         ->check(CLI::Range(lo, hi).description(""))
         ->type_name("N in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]")
         ->capture_default_str();
+}
+
+// Adds `name` taking a whole number in [lo, hi] into an optional (unset: the scene's own default).
+inline CLI::Option* addOptionalWholeNumber(CLI::App& command, const std::string& name,
+                                           std::optional<uint32_t>& value, uint32_t lo, uint32_t hi,
+                                           const std::string& help) {
+    return command.add_option_function<uint32_t>(name, [&value](const uint32_t& v) { value = v; }, help)
+        ->transform(CLI::Validator(wholeNumber, ""))
+        ->check(CLI::Range(lo, hi).description(""))
+        ->type_name("N in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+}
+
+// "[lo, hi]" or "(lo, hi]", the numbers as %g prints them.
+inline std::string realRange(double lo, double hi, bool open_low) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%s%g, %g]", open_low ? "(" : "[", lo, hi);
+    return text;
+}
+
+// A decimal number in [lo, hi] (lo excluded when `open_low`), finite: CLI11 alone would take "nan"
+// and "inf". Returns "" or what is wrong.
+inline std::string realNumber(const std::string& text, double lo, double hi, bool open_low) {
+    double value = 0.0;
+    size_t used = 0;
+    try {
+        value = std::stod(text, &used);
+    } catch (const std::exception&) {
+        used = 0;
+    }
+    if (used == 0 || used != text.size() || text.find_first_of("nNiIxX") != std::string::npos)
+        return "'" + text + "' is not a decimal number";
+    if (!std::isfinite(value) || value > hi || value < lo || (open_low && value == lo))
+        return "'" + text + "' is outside " + realRange(lo, hi, open_low);
+    return "";
+}
+
+// Adds `name` taking a decimal number as realNumber checks it; set(value) gets it.
+inline CLI::Option* addRealNumber(CLI::App& command, const std::string& name, double lo, double hi,
+                                  bool open_low, std::function<void(double)> set, const std::string& help) {
+    return command.add_option_function<double>(name, [set](const double& v) { set(v); }, help)
+        ->check(CLI::Validator([=](std::string& text) { return realNumber(text, lo, hi, open_low); }, ""))
+        ->type_name("T in " + realRange(lo, hi, open_low));
 }
 
 // Reads "A<separator>B", two whole numbers each in [lo, hi], into out. Returns "" or what is wrong,
@@ -108,7 +153,7 @@ inline CLI::App* addCommand(CLI::App& app, const std::string& name, const std::s
 
 // The positional scene name: one of sceneNames() (the lecture's scenes, the labs, their solutions).
 inline CLI::Option* addSceneName(CLI::App& command, std::string& name) {
-    return command.add_option("scene", name, "particles, fog, or a lab (raster render --list)")
+    return command.add_option("scene", name, "fire, particles, fog, or a lab (raster render --list)")
         ->check(CLI::IsMember(sceneNames()));
 }
 
@@ -120,9 +165,10 @@ inline void addSizeOptions(CLI::App& command, SceneOptions& options) {
 
 // --count, --seed, --cubes, --fog: what the lecture's scenes and the labs hold (bench, trace, view).
 inline void addContentOptions(CLI::App& command, SceneOptions& options) {
-    addWholeNumber(command, "--count", options.count, 0, 50'000'000, "particles: the number of billboards");
+    addOptionalWholeNumber(command, "--count", options.count, 0, 50'000'000,
+                           "particles: the number of billboards (10000); fire: the particle slots (4000)");
     addWholeNumber(command, "--seed", options.seed, 0, UINT32_MAX,
-                   "particles: the simulation's seed (labs that simulate; the lecture's scenes have none)");
+                   "the simulation's seed (fire, labs that simulate; particles and fog have none)");
     addWholeNumber(command, "--cubes", options.cubes, 0, 1024, "fog: cubes per side of the grid");
     command
         .add_option_function<std::string>(
@@ -130,6 +176,13 @@ inline void addContentOptions(CLI::App& command, SceneOptions& options) {
             "fog: the fog model")
         ->check(CLI::IsMember({"constant", "height"}))
         ->default_str(options.heightFog ? "height" : "constant");
+}
+
+// --time T: an animated scene's start time (bench, render). Static scenes ignore it.
+inline void addTimeOptions(CLI::App& command, SceneOptions& options) {
+    addRealNumber(
+        command, "--time", 0.0, kMaxStartTime, false, [&options](double t) { options.time = t; },
+        "animated scenes: the start time in seconds, simulated before the first frame (fire: 3)");
 }
 
 // --threads T: the Context's worker threads; unset, one per hardware thread.

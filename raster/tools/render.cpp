@@ -1,7 +1,13 @@
-// raster render [scene...] [--out-dir D] [--width W] [--height H] [--reference] [--view] [--list]:
-// renders the lecture's scenes and the labs' (all of them by default) to D/<scene>.png; with --view
-// it then opens the viewer on the first of them where a display exists (DISPLAY or WAYLAND_DISPLAY
-// set). --list prints the scenes, one a line, and what each is.
+// raster render [scene...] [--out-dir D] [--width W] [--height H] [--time T] [--frames N [--fps F]]
+//               [--reference] [--view] [--list]:
+// renders the lecture's scenes and the labs' (all of them by default) to D/<scene>.png, animated
+// ones at their start time (--time T, or the scene's own). --frames N writes a sequence instead,
+// D/<scene>_0000.png … D/<scene>_<N−1>.png, frame k at time T + k/F (F = --fps, 30 by default; the
+// scene's fixed steps in that time, scenes.hpp): only for animated scenes (all of them when none is
+// named); naming a static scene with --frames is refused, as its frames would all be the same.
+// With --view it then opens the viewer on the first scene where a display exists (DISPLAY or
+// WAYLAND_DISPLAY set). --list prints the scenes, one a line, and what each is.
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -22,6 +28,8 @@ struct RenderArgs {
     std::vector<std::string> names;
     std::string outDir = "out";
     SceneOptions options;
+    uint32_t frames = 0;  // 0: one picture, <scene>.png
+    double fps = 30.0;
     bool reference = false, plain = false, viewAfter = false, list = false;
 };
 
@@ -29,7 +37,8 @@ struct RenderArgs {
 void listScenes() {
     for (const std::string& name : sceneNames()) {
         const SceneEntry* entry = findRegisteredScene(name);
-        const char* title = name == "particles" ? "the lecture's fire billboards (../shared/bench/SCENES.md)"
+        const char* title = name == "fire"        ? "the lecture's fire over the occluder, animated (a particle system)"
+                            : name == "particles" ? "the lecture's fire billboards (../shared/bench/SCENES.md)"
                             : name == "fog"     ? "cubes on a ground plane in fog (../shared/bench/SCENES.md)"
                             : entry             ? entry->title.c_str()
                                                 : "";
@@ -51,30 +60,57 @@ int viewAfter(const std::string& scene) {
     return openViewer(std::move(options));
 }
 
-// Each scene's PNG is written before the next scene is made: an error in a later scene leaves the
+// The scenes to render: the named ones, or all; with --frames the animated ones of all, and a named
+// static one is a usage error.
+std::vector<std::string> scenesToRender(const RenderArgs& args) {
+    if (args.frames == 0) return args.names.empty() ? sceneNames() : args.names;
+    std::vector<std::string> names;
+    for (const std::string& name : args.names.empty() ? sceneNames() : args.names) {
+        const bool animated = makeScene(name, {.width = 1, .height = 1, .count = 0})->animated();
+        if (animated) names.push_back(name);
+        else if (!args.names.empty())
+            throw CLI::ValidationError("--frames", "scene '" + name +
+                                                       "' is static: its frames would all be the same "
+                                                       "(--frames takes animated scenes, such as fire)");
+    }
+    return names;
+}
+
+// Writes one scene's picture, or its --frames sequence: frame k after k advances of 1/fps.
+void renderScene(Context& context, const std::string& name, const RenderArgs& args) {
+    const SceneOptions& options = args.options;
+    std::unique_ptr<Scene> scene = makeScene(name, options);
+    RenderTarget color(options.width, options.height);
+    DepthTarget depth(options.width, options.height);
+    for (uint32_t k = 0; k < std::max(args.frames, 1u); ++k) {
+        if (k > 0) scene->advance(1.0 / args.fps);
+        scene->render(context, color, depth);
+        char suffix[16] = "";
+        if (args.frames > 0) std::snprintf(suffix, sizeof suffix, "_%04u", k);
+        const std::string path = args.outDir + "/" + name + suffix + ".png";
+        color.savePng(path);
+        if (scene->animated())
+            std::printf("wrote %s (%ux%u, t=%.4f s)\n", path.c_str(), options.width, options.height, scene->time());
+        else
+            std::printf("wrote %s (%ux%u)\n", path.c_str(), options.width, options.height);
+        std::fflush(stdout);
+    }
+}
+
+// Each PNG is written before the next frame or scene is made: an error in a later one leaves the
 // earlier files in place.
 int runRender(const RenderArgs& args) {
     if (args.list) {
         listScenes();
         return 0;
     }
-    const std::vector<std::string> names = args.names.empty() ? sceneNames() : args.names;
-    const SceneOptions& options = args.options;
+    const std::vector<std::string> names = scenesToRender(args);
     std::error_code ec;
     std::filesystem::create_directories(args.outDir, ec);
     RASTER_REQUIRE(!ec, BadFile, "cannot create output directory '" + args.outDir + "': " + ec.message());
     Context context({0, args.reference, args.plain});
-    for (const std::string& name : names) {
-        std::unique_ptr<Scene> scene = makeScene(name, options);
-        RenderTarget color(options.width, options.height);
-        DepthTarget depth(options.width, options.height);
-        scene->render(context, color, depth);
-        const std::string path = args.outDir + "/" + name + ".png";
-        color.savePng(path);
-        std::printf("wrote %s (%ux%u)\n", path.c_str(), options.width, options.height);
-        std::fflush(stdout);
-    }
-    return args.viewAfter ? viewAfter(names.front()) : 0;
+    for (const std::string& name : names) renderScene(context, name, args);
+    return args.viewAfter && !names.empty() ? viewAfter(names.front()) : 0;
 }
 
 }  // namespace
@@ -85,6 +121,15 @@ Command addRender(CLI::App& app) {
     command->add_option("--out-dir", args->outDir, "write <scene>.png here (created if missing)")
         ->capture_default_str();
     addSizeOptions(*command, args->options);
+    addContentOptions(*command, args->options);
+    addTimeOptions(*command, args->options);
+    addWholeNumber(*command, "--frames", args->frames, 1, 100'000,
+                   "write N frames <scene>_0000.png ... of the animated scenes")
+        ->default_str("one picture, <scene>.png");
+    addRealNumber(
+        *command, "--fps", 0.0, 1000.0, true, [args](double fps) { args->fps = fps; },
+        "--frames: frames per second of simulated time (frame k at --time + k/F)")
+        ->default_str("30");
     command->add_flag("--reference", args->reference, "render through the reference pipeline");
     command->add_flag("--plain", args->plain, "every primitive through the plain path (fill/quads.hpp): for stepping in a debugger");
     command->add_flag("--view", args->viewAfter,

@@ -120,7 +120,9 @@ private:
     std::vector<Key> keys_;
 };
 using Curve = PiecewiseLinear<float>;         // size (a factor on the particle's birth size), opacity
-using ColourGradient = PiecewiseLinear<glm::vec3>;  // colour, linear rgb (not shader_context.hpp's Gradient, a derivative)
+// (Not `Gradient`: raster::Gradient<T> is a pixel's screen-space derivatives, shader_context.hpp,
+// which every header of the pipeline includes.)
+using ColourGradient = PiecewiseLinear<glm::vec3>;  // colour, linear rgb
 extern template class PiecewiseLinear<float>;
 extern template class PiecewiseLinear<glm::vec3>;
 

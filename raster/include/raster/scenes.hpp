@@ -1,6 +1,6 @@
-// The lecture's scenes, as ../shared/bench/SCENES.md defines them to the last constant:
-// `particles` (fire billboards over an occluder) and `fog` (cubes on a ground plane in fog), and
-// the labs' scenes: each lab (labs/<name>/, see raster/lab.hpp) registers `<name>`, its solution
+// The lecture's scenes: `fire` (a particle system burning over the occluder, animated), and the two
+// that ../shared/bench/SCENES.md defines to the last constant, `particles` (fire billboards over an
+// occluder) and `fog` (cubes on a ground plane in fog); and the labs' scenes: each lab (labs/<name>/, see raster/lab.hpp) registers `<name>`, its solution
 // (solutions/<name>/) `<name>@solution`.
 // `raster bench`, `raster render`, the viewer and the tests all draw them through this interface.
 #pragma once
@@ -25,28 +25,64 @@ struct SceneCamera {
 
 struct SceneOptions {
     uint32_t width = 1280, height = 720;
-    uint32_t count = 10000;   // particles
-    uint32_t seed = 0;        // particles: the simulation's seed, in scenes that simulate (the labs');
-                              // the lecture's scenes' data are fixed functions of the count
+    // particles: the number of billboards; fire: the particle system's slots (maxParticles; the
+    // emission rate is set so that about 3/4 of them burn at once). Unset: the scene's own,
+    // kDefaultParticleCount (particles) or kDefaultFireCount (fire).
+    std::optional<uint32_t> count;
     uint32_t cubes = 16;      // fog: cubes per side
     bool heightFog = true;    // fog: "height" (true) or "constant"
-    std::string texture;      // particles: a PNG to use instead of the generated fire texture
+    std::string texture;      // particles, fire: a PNG to use instead of the generated fire texture
+    // Animated scenes (fire): the clock's start, in seconds, simulated before the first frame, so
+    // that a frame is a function of the options alone (the same bits at any thread count). Finite,
+    // in [0, kMaxStartTime]. Unset: the scene's own (fire: kDefaultFireTime, burning steadily).
+    // Static scenes ignore it.
+    std::optional<double> time;
+    // The simulation's seed, in scenes that simulate (fire: ParticleSystemDesc::seed; the labs that
+    // simulate); the lecture's particles and fog are fixed functions of the count and have none.
+    uint32_t seed = 0;
     // Overrides the scene's camera. Unset, the scene is exactly SCENES.md's (what `raster bench`
     // measures); set to defaultCamera(name), it renders the same image bit for bit.
     std::optional<SceneCamera> camera;
 };
 
+constexpr uint32_t kDefaultParticleCount = 10000;
+constexpr uint32_t kDefaultFireCount = 4000;
+constexpr double kDefaultFireTime = 3.0;  // seconds after the fire is lit
+constexpr double kMaxStartTime = 600.0;   // seconds: 36 000 steps of 1/60 s to simulate first
+
+// A scene draws frames; an animated one also has a clock.
+//
+// Time, for animated scenes: the clock starts at SceneOptions::time and only advance() moves it;
+// render() draws the state at the clock's time without changing it. The state is that of a whole
+// number of fixed simulation steps (the fire's: ParticleSystemDesc::timeStep = 1/60 s), the steps
+// that fit in the clock's time, never a fraction of one: ParticleSystem::advance's rule, time not yet
+// simulated carried over, a step run once 1 − 10⁻⁴ of it has accumulated, none ever dropped. So
+// the frame rate does not change the motion: advance(0.5) twice and a start at 1.0 are both the
+// same 60 steps, and a frame is a function of (options, the sum of the advances) — bit for bit, at
+// any thread count (the simulation is deterministic for a seed). Static scenes keep time 0 and
+// ignore advance() (after checking its argument).
 class Scene {
 public:
     virtual ~Scene() = default;
     virtual std::string_view name() const = 0;
-    // Clears the targets and draws one frame.
+    // Clears the targets and draws one frame, at the scene's current time.
     virtual void render(Context& context, RenderTarget& color, DepthTarget& depth) = 0;
+
+    virtual bool animated() const { return false; }
+    // The clock, in seconds: the start time plus every advance so far (0 for a static scene).
+    virtual double time() const { return 0.0; }
+    // Moves the clock on by `seconds` (finite and ≥ 0, else Error(InvalidArgument) naming it) and
+    // simulates the whole steps that now fit. Takes as long as the steps do: one frame's worth
+    // (1/60 s, one step) is cheap, a minute of time is 3600 steps.
+    void advance(double seconds);
+
+protected:
+    virtual void advanceBy(double /*seconds*/) {}  // seconds already checked
 };
 
 // Throws Error(InvalidArgument) for an unknown scene name or an option out of range.
 std::unique_ptr<Scene> makeScene(std::string_view name, const SceneOptions& options);
-// The lecture's scenes first, then the registered ones in name order.
+// The lecture's scenes first (fire, particles, fog), then the registered ones in name order.
 std::vector<std::string> sceneNames();
 // SCENES.md's camera of a scene, or a registered scene's. Throws Error(InvalidArgument) for an
 // unknown scene name.
@@ -79,8 +115,9 @@ glm::mat4 sceneView(const SceneCamera& camera);
 // the library's coverage rule (no coverage test): how every scene's frame begins (SCENES.md's conventions).
 void beginSceneFrame(Context& context, RenderTarget& color, DepthTarget& depth);
 
-// SCENES.md's particle scene as data, for the `particles` scene and the lab that rebuilds it: the
-// occluder (two triangles) and `count` particles, both POSITION R32G32B32_FLOAT in `layout`.
+// SCENES.md's particle scene as data, for the `particles` scene, the lab that rebuilds it and the
+// `fire` scene (its occluder): the occluder (two triangles) and `count` particles (the options'
+// count, or kDefaultParticleCount), both POSITION R32G32B32_FLOAT in `layout`.
 struct ParticleSceneData {
     explicit ParticleSceneData(const SceneOptions& options);
     // Draw 1 of SCENES.md: the occluder, opaque (depth test Less and write, no blending), with

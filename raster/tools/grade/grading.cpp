@@ -149,10 +149,10 @@ std::vector<LabGrading> discoverLabs(const std::string& root, bool public_only) 
 std::vector<std::string> runnerOptionArgs(const SceneOptions& o) {
     std::vector<std::string> args = {"--width",  std::to_string(o.width),
                                      "--height", std::to_string(o.height),
-                                     "--count",  std::to_string(o.count),
                                      "--seed",   std::to_string(o.seed),
                                      "--cubes",  std::to_string(o.cubes),
                                      "--fog",    o.heightFog ? "height" : "constant"};
+    if (o.count) args.insert(args.end(), {"--count", std::to_string(*o.count)});
     if (o.camera) {
         char camera[256];
         std::snprintf(camera, sizeof camera, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g", o.camera->eye.x,

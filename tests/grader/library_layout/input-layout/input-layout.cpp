@@ -157,7 +157,7 @@ class InputLayoutLab final : public LabScene {
   public:
     explicit InputLayoutLab(const SceneOptions& o) : data_(o), layout_(kParticleElements) {
         vs_.viewProj = data_.viewProj;
-        particles_ = simulateFire(o.count, o.seed);
+        particles_ = simulateFire(o.count.value_or(kDefaultParticleCount), o.seed);
         // The upload: the lecture's Map(WRITE_DISCARD) + memcpy of std::vector<Particle>.
         buffer_ = VertexBuffer::create(std::span<const Particle>(particles_));
     }
