@@ -82,7 +82,8 @@ def spec_errors(results):
 
 def make_zip(source, cmake, zip_path):
     script = os.path.join(source, "raster", "tools", "grade", "gradescope", "autograder_zip.cmake")
-    subprocess.run([cmake, f"-DSOURCE_DIR={source}", f"-DOUTPUT={zip_path}", "-P", script], check=True,
+    # One lab, as a Gradescope assignment is: a loose billboards.cpp then scores full marks.
+    subprocess.run([cmake, f"-DSOURCE_DIR={source}", f"-DOUTPUT={zip_path}", "-DLABS=billboards", "-P", script], check=True,
                    capture_output=True, text=True)
 
 
