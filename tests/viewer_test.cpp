@@ -28,6 +28,7 @@
 #include "raster/scenes.hpp"
 #include "view/camera.hpp"
 #include "view/compare_views.hpp"
+#include "view/playback.hpp"
 #include "view/trace_views.hpp"
 
 namespace raster::tools {
@@ -234,6 +235,89 @@ TEST(ViewerScript, ParsesKeysAndPointerTokens) {
     }
 }
 
+TEST(ViewerScript, TimeKeys) {
+    const std::vector<Action> a = parseScript("space . , home + = - Space");
+    ASSERT_EQ(a.size(), 8u);
+    EXPECT_EQ(a[0].verb, Verb::TogglePlay);
+    EXPECT_EQ(a[1].verb, Verb::StepFrame);
+    EXPECT_EQ(a[1].x, 1);
+    EXPECT_EQ(a[2].x, -1) << ", steps back";
+    EXPECT_EQ(a[3].verb, Verb::RestartTime);
+    EXPECT_EQ(a[4].verb, Verb::Faster);
+    EXPECT_EQ(a[5].verb, Verb::Faster) << "= is + without Shift";
+    EXPECT_EQ(a[6].verb, Verb::Slower);
+    EXPECT_EQ(a[7].verb, Verb::TogglePlay);
+    for (const char* key : {"Space", ". / ,", "+ / -", "Home"}) {
+        bool listed = false;
+        for (const std::string& line : keyHelp()) listed = listed || line.starts_with(key);
+        EXPECT_TRUE(listed) << key << " is missing from the help";
+    }
+}
+
+// ---- The playback clock -------------------------------------------------------------------------------
+
+TEST(Playback, StepsPauseAndStayWithinTheClocksRange) {
+    Playback p;
+    EXPECT_FALSE(p.step(1)) << "nothing moves before the scene is known";
+    p.setScene(true, 3.0);
+    EXPECT_FALSE(p.setPlaying(true)) << "starting play does not move the clock";
+    EXPECT_TRUE(p.playing());
+    EXPECT_TRUE(p.step(2));
+    EXPECT_FALSE(p.playing()) << "a step pauses";
+    EXPECT_DOUBLE_EQ(p.time(), 3.0 + 2 * kFrameStep);
+    EXPECT_TRUE(p.step(-1));
+    EXPECT_DOUBLE_EQ(p.time(), 3.0 + kFrameStep);
+    EXPECT_TRUE(p.restart());
+    EXPECT_EQ(p.time(), 3.0) << "Home is the start exactly";
+    EXPECT_FALSE(p.restart()) << "already there";
+    EXPECT_TRUE(p.step(-1000));
+    EXPECT_EQ(p.time(), 0.0) << "never before 0";
+    EXPECT_FALSE(p.step(-1));
+    p.step(int(kMaxStartTime / kFrameStep) + 100);
+    EXPECT_EQ(p.time(), kMaxStartTime) << "never after the latest start time";
+}
+
+TEST(Playback, PlayAdvancesByRealTimeTimesSpeedCapped) {
+    Playback p;
+    p.setScene(true, 1.0);
+    EXPECT_FALSE(p.tick(0.05)) << "paused: no move";
+    p.setPlaying(true);
+    EXPECT_TRUE(p.tick(0.05));
+    EXPECT_DOUBLE_EQ(p.time(), 1.05);
+    p.faster();
+    EXPECT_EQ(p.speed(), 2.0);
+    EXPECT_TRUE(p.tick(0.05));
+    EXPECT_DOUBLE_EQ(p.time(), 1.15);
+    EXPECT_TRUE(p.tick(5.0)) << "a slow frame";
+    EXPECT_DOUBLE_EQ(p.time(), 1.15 + kMaxPlayStep * 2) << "advances at most kMaxPlayStep of real time";
+    EXPECT_FALSE(p.tick(-1.0));
+    EXPECT_FALSE(p.tick(std::nan("")));
+    for (int i = 0; i < 10; ++i) p.slower();
+    EXPECT_EQ(p.speed(), kMinSpeed);
+    for (int i = 0; i < 20; ++i) p.faster();
+    EXPECT_EQ(p.speed(), kMaxSpeed);
+    EXPECT_NE(p.label().find("playing x16"), std::string::npos) << p.label();
+    p.setPlaying(false);
+    for (int i = 0; i < 6; ++i) p.slower();
+    EXPECT_NE(p.label().find("paused x1/4"), std::string::npos) << p.label();
+    p.step(int(kMaxStartTime / kFrameStep));
+    p.setPlaying(true);
+    p.tick(0.1);
+    EXPECT_EQ(p.time(), kMaxStartTime);
+    EXPECT_FALSE(p.playing()) << "play stops at the latest start time";
+}
+
+TEST(Playback, StaticScenesKeepTimeZero) {
+    Playback p;
+    p.setScene(false, 0.0);
+    p.setPlaying(true);
+    EXPECT_FALSE(p.playing());
+    EXPECT_FALSE(p.step(1));
+    EXPECT_FALSE(p.tick(0.05));
+    EXPECT_EQ(p.time(), 0.0);
+    EXPECT_EQ(p.label(), "");
+}
+
 TEST(ViewerScript, ErrorsNameTheToken) {
     expectInvalidArgument([] { parseScript("N N Z S"); }, {"unknown key 'Z'"});
     expectInvalidArgument([] { parseScript("click:1"); }, {"'click:1'", "click:X,Y"});
@@ -352,6 +436,8 @@ class ViewerTest : public ::testing::Test {
         last_solved_ = viewer.shownFrame() && viewer.shownFrame()->solution;
         last_notes_ = viewer.viewNotes();
         last_camera_ = viewer.camera();
+        last_playback_ = viewer.playback();
+        last_frame_time_ = viewer.shownFrame() ? viewer.shownFrame()->sceneTime : -1;
         std::vector<ImageRgba8> shots;
         for (const std::string& path : viewer.screenshots()) shots.push_back(readImageRgba8(path));
         last_paths_ = viewer.screenshots();
@@ -383,6 +469,8 @@ class ViewerTest : public ::testing::Test {
     std::vector<std::string> last_messages_, last_paths_;
     std::vector<PipelineStatistics> last_log_;
     SceneCamera last_camera_{};
+    Playback last_playback_;
+    double last_frame_time_ = -1;  // the shown frame's scene time
     std::vector<std::string> last_notes_;
     bool last_traced_ = false;
     std::string solution_;      // --solution of the next run
@@ -406,6 +494,63 @@ TEST_F(ViewerTest, WholeFrameScreenshotIsTheFramebuffer) {
         EXPECT_EQ(fileBytes(last_paths_[0]), fileBytes(reference)) << scene;
         EXPECT_NE(last_paths_[0].find(scene + "-0001.png"), std::string::npos) << last_paths_[0];
     }
+}
+
+// The fire after `steps` frames of 1/60 s from its start, as `raster render fire --frames --fps 60`
+// draws them.
+RenderTarget fireAfter(int steps) {
+    SceneOptions o{.width = kWidth, .height = kHeight, .count = kParticles};
+    std::unique_ptr<Scene> scene = makeScene("fire", o);
+    for (int i = 0; i < steps; ++i) scene->advance(kFrameStep);
+    Context ctx;
+    RenderTarget color(kWidth, kHeight);
+    DepthTarget depth(kWidth, kHeight);
+    scene->render(ctx, color, depth);
+    return color;
+}
+
+TEST_F(ViewerTest, FrameStepsAreTheFramesOfTheClock) {
+    // Headless starts paused: the first frame is the start, then . forward, , back (a rebuilt
+    // scene), Home the start again: each the same bits as the scene advanced that many frames.
+    const std::vector<ImageRgba8> shots = run("S . . . S , S home S", "fire");
+    ASSERT_EQ(shots.size(), 4u);
+    const RenderTarget start = fireAfter(0);
+    expectSameImage(shots[0], start, "the start");
+    expectSameImage(shots[1], fireAfter(3), ". . .");
+    expectSameImage(shots[2], fireAfter(2), ". . . ,");
+    expectSameImage(shots[3], start, "Home");
+    EXPECT_FALSE(shots[0].pixels == shots[1].pixels) << "the fire moved in three frames";
+    EXPECT_TRUE(last_playback_.animated());
+    EXPECT_FALSE(last_playback_.playing()) << "headless never plays on its own";
+    EXPECT_EQ(last_frame_time_, kDefaultFireTime);
+}
+
+TEST_F(ViewerTest, PlayMovesTheClockAndStepsPauseIt) {
+    run("space wait . S", "fire");
+    EXPECT_FALSE(last_playback_.playing()) << ". pauses";
+    EXPECT_GT(last_playback_.time(), kDefaultFireTime + kFrameStep) << "play moved the clock";
+    EXPECT_NEAR(last_frame_time_, last_playback_.time(), 1e-9) << "the frame shown is of the clock's time";
+    ASSERT_FALSE(last_paths_.empty());
+    bool timed = false;
+    for (const std::string& m : last_messages_)
+        timed =
+            timed || (m.find(last_paths_[0]) != std::string::npos && m.find(", t 3.0") != std::string::npos);
+    EXPECT_TRUE(timed) << "a screenshot of an animated scene says its time";
+    bool said = false;
+    run("+ + -", "fire");
+    for (const std::string& m : last_messages_) said = said || m.find("paused x2") != std::string::npos;
+    EXPECT_TRUE(said) << "speed changes are said";
+    EXPECT_EQ(last_playback_.speed(), 2.0);
+}
+
+TEST_F(ViewerTest, TimeKeysOnAStaticSceneSaySoOnce) {
+    const std::vector<ImageRgba8> shots = run(". space , S", "particles");
+    ASSERT_EQ(shots.size(), 1u);
+    expectSameImage(shots[0], direct({}), "a static scene ignores time");
+    int said = 0;
+    for (const std::string& m : last_messages_) said += m.find("is static") != std::string::npos;
+    EXPECT_EQ(said, 1);
+    EXPECT_FALSE(last_playback_.animated());
 }
 
 TEST_F(ViewerTest, ScreenshotsAreNumberedWithoutOverwriting) {
@@ -974,8 +1119,8 @@ TEST_F(ViewerTest, PngSolutionsAndTheirSize) {
         EXPECT_EQ(e.code(), ErrorCode::BadFile);
         EXPECT_NE(std::string(e.what()).find("missing.png"), std::string::npos) << e.what();
     }
-    solution_ = "smoke";
-    expectInvalidArgument([&] { Viewer viewer(options("K")); }, {"unknown --solution 'smoke'"});
+    solution_ = "nonesuch";
+    expectInvalidArgument([&] { Viewer viewer(options("K")); }, {"unknown --solution 'nonesuch'"});
 }
 
 }  // namespace

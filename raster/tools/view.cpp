@@ -22,6 +22,8 @@ std::string about() {
         "reference pipeline), another scene (e.g. a lab's solution) at the same size, camera and step,\n"
         "or a PNG of the frame's size; rendered only while K or J is on. A lab's default is its solution\n"
         "(<lab>@solution), when solutions/ was built.\n"
+        "Animated scenes (fire) play in the window from the start; --paused or --headless start them\n"
+        "paused (Space plays, . and , step a frame of 1/60 s, so a script's frames are exact).\n"
         "keys:";
     for (const std::string& line : keyHelp()) text += "\n  " + line;
     return text;
@@ -58,7 +60,10 @@ Command addView(CLI::App& app) {
     addContentOptions(*command, scene);
     addThreadsOption(*command, options->context.threads);
     command->add_flag("--reference", options->context.reference, "run the reference pipeline");
-    command->add_flag("--plain", options->context.plain, "every primitive through the plain path (fill/quads.hpp): for stepping in a debugger");
+    command->add_flag("--plain", options->context.plain,
+                      "every primitive through the plain path (fill/quads.hpp): for stepping in a debugger");
+    addTimeOptions(*command, scene);
+    command->add_flag("--paused", options->paused, "animated scenes: start paused (Space plays)");
     command->add_flag("--headless", options->headless, "SDL's offscreen driver: run --script, then exit");
     command
         ->add_option_function<std::string>(

@@ -34,6 +34,11 @@ enum class Verb {
     Zoom,               // wheel; script wheel:N
     Click,              // a click without a drag; script click:X,Y
     Resize,             // script resize:WxH (a user drags the window's border)
+    TogglePlay,         // Space: play or pause an animated scene's clock (playback.hpp)
+    StepFrame,          // . and ,: x frames of 1/60 s forward (1) or back (-1), paused
+    RestartTime,        // Home: the clock back to its start
+    Faster,             // + (=): twice the speed
+    Slower,             // -: half the speed
     Wait,               // script wait: until the latest render is shown
     Quit,               // Esc, Q
 };

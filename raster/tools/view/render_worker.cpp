@@ -38,10 +38,17 @@ std::string progressText(const RunningRender& running, uint32_t drawTotal) {
 }
 
 Scene& RenderWorker::CachedScene::get(const std::string& name, const SceneOptions& wanted) {
-    if (!scene || !sameScene(options, wanted)) {
+    // Clocks within this of each other are the same frame: well under a step (1/60 s), above the
+    // rounding of a sum of steps.
+    constexpr double kSameTime = 1e-9;
+    const bool earlier =
+        scene && scene->animated() && wanted.time && *wanted.time < scene->time() - kSameTime;
+    if (!scene || !sameScene(options, wanted) || earlier) {
         scene.reset();  // first: a big scene's buffers are not held twice
         scene = makeScene(name, wanted);
         options = wanted;
+    } else if (scene->animated() && wanted.time && *wanted.time > scene->time() + kSameTime) {
+        scene->advance(*wanted.time - scene->time());
     }
     return *scene;
 }
@@ -169,6 +176,8 @@ std::shared_ptr<RenderedFrame> RenderWorker::render(Context& context, uint64_t i
         frame->drawLog = context.drawStatisticsLog();
         frame->frameStatistics = context.frameStatistics();
         frame->drawCount = context.drawCount();
+        frame->animated = scene.animated();
+        frame->sceneTime = scene.time();
     } catch (const std::exception& e) {  // raster::Error, or running out of memory for a huge window
         frame->error = e.what();
     }

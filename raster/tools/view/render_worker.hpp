@@ -53,7 +53,10 @@ struct SolutionRender {
 };
 
 struct RenderRequest {
-    SceneOptions scene;  // only size and camera may change between requests of one worker
+    // Only size, camera and time may change between requests of one worker. time: an animated
+    // scene's clock for this frame (unset: the scene's own start); a later time advances the kept
+    // scene, an earlier one rebuilds it (the frame is the same bits either way).
+    SceneOptions scene;
     Context::StepLimit limit;
     std::string stepLabel;  // what the overlay says about the step position
     TraceRequest trace;
@@ -71,13 +74,15 @@ struct RenderedFrame {
     double milliseconds = 0;       // the scene's render call
     std::string error;             // what a raster::Error said, if the render threw
     Viewport viewport;             // the context's viewport after the scene's render (for clip → screen)
+    bool animated = false;         // the scene's Scene::animated()
+    double sceneTime = 0;          // its clock when it rendered this frame (Scene::time())
     std::unique_ptr<Trace> trace;  // when request.trace.any()
     // When request.solution: the solution scene at the frame's size, camera (the frame's scene's
     // own when request.scene.camera is unset) and step limit, never traced.
     std::optional<RenderTarget> solution;
     double solutionMilliseconds = 0;
     uint32_t solutionDrawCount = 0;  // draws the solution scene issued (for the next render's progress)
-    std::string solutionError;  // what its render threw; the frame itself is still good
+    std::string solutionError;       // what its render threw; the frame itself is still good
 };
 
 // The render running now, as the HUD tells it.
@@ -108,7 +113,8 @@ class RenderWorker {
     std::optional<RunningRender> running() const;
 
   private:
-    // A scene kept between renders, rebuilt when the size or the camera changes.
+    // A scene kept between renders, rebuilt when the size or the camera changes, or when an
+    // animated scene is asked for an earlier time than its clock's (advanced for a later one).
     struct CachedScene {
         std::unique_ptr<Scene> scene;
         SceneOptions options;

@@ -3,6 +3,7 @@
 #include <SDL.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <optional>
@@ -49,6 +50,21 @@ std::string keyName(const SDL_Keysym& key, bool fly) {
             return "pageup";
         case SDLK_PAGEDOWN:
             return "pagedown";
+        case SDLK_SPACE:
+            return "space";
+        case SDLK_PERIOD:
+            return ".";
+        case SDLK_COMMA:
+            return ",";
+        case SDLK_PLUS:
+        case SDLK_EQUALS:  // + without Shift on most layouts
+        case SDLK_KP_PLUS:
+            return "+";
+        case SDLK_MINUS:
+        case SDLK_KP_MINUS:
+            return "-";
+        case SDLK_HOME:
+            return "home";
         default:
             return {};
     }
@@ -135,6 +151,8 @@ void Viewer::run() {
         if (std::shared_ptr<RenderedFrame> frame = worker_->takeFinished()) show(std::move(frame));
         followWindowSize();
         runQueue();
+        if (options_.headless && queue_.empty()) playback_.setPlaying(false);  // the script's end ends play
+        playOn();
         if (options_.headless && queue_.empty() && upToDate()) quit_ = true;
         if (dirty_ || !upToDate()) drawWindow();
     }
@@ -196,6 +214,9 @@ void Viewer::runQueue() {
         // A click's history comes with a traced render: what follows waits for it, so the history
         // printed is that of the frame clicked on.
         if (action.verb == Verb::Click && !upToDate()) queue_.push_front({Verb::Wait});
+        // Play starts before the next key is read: it ticks at least once (a script's
+        // "Space wait" sees the clock move).
+        if (action.verb == Verb::TogglePlay && playback_.playing()) return;
     }
 }
 
@@ -211,6 +232,7 @@ bool Viewer::perform(const Action& a) {
         case Verb::NextPrimitive:
         case Verb::PreviousPrimitive:
             if (!cursor_.hasShape()) return false;  // known once the first whole frame is rendered
+            playback_.setPlaying(false);            // stepping a frame that moves on would lose it
             if (a.verb == Verb::NextDraw)
                 cursor_.nextDraw();
             else if (a.verb == Verb::PreviousDraw)
@@ -286,8 +308,15 @@ bool Viewer::perform(const Action& a) {
             return true;
         case Verb::Click:
             if (!upToDate() || !shown_) return false;
+            playback_.setPlaying(false);  // the history is of the frame clicked on
             reportPixel(a.x, a.y);
             return true;
+        case Verb::TogglePlay:
+        case Verb::StepFrame:
+        case Verb::RestartTime:
+        case Verb::Faster:
+        case Verb::Slower:
+            return performTime(a);
         case Verb::Wait:
             return upToDate();
         case Verb::Quit:
@@ -303,6 +332,7 @@ void Viewer::requestRender() {
     request.scene.width = width_;
     request.scene.height = height_;
     request.scene.camera = camera_moved_ ? std::optional<SceneCamera>(camera_) : std::nullopt;
+    if (playback_.animated()) request.scene.time = playback_.time();
     request.limit = requested_limit_ = stepLimit();
     request.stepLabel = cursor_.label();
     request.trace = requested_trace_ = traceNeeds();
@@ -345,8 +375,8 @@ void Viewer::viewsChanged() {
     // Views switched off, or on with what the shown (or the coming) frame has: no new render.
     // A stage view also changes the step limit (the current draw stops at the stage).
     const Context::StepLimit limit = stepLimit();
-    const bool coming = !upToDate() && requested_trace_.covers(need) && (requested_solution_ || !need_solution) &&
-                        requested_limit_ == limit;
+    const bool coming = !upToDate() && requested_trace_.covers(need) &&
+                        (requested_solution_ || !need_solution) && requested_limit_ == limit;
     // (The shown frame counts only when no other render is coming to replace it.)
     const bool shown_has = upToDate() && shown_ && shown_->request.trace.covers(need) &&
                            (shown_->request.solution || !need_solution) && shown_->request.limit == limit;
@@ -409,9 +439,60 @@ void Viewer::show(std::shared_ptr<RenderedFrame> frame) {
         shape.resize(frame->drawCount, 0);
         cursor_.setShape(std::move(shape));
     }
+    if (!playback_.known()) {  // the first frame says whether the scene moves, and from when
+        playback_.setScene(frame->animated, frame->sceneTime);
+        playback_.setPlaying(!options_.headless && !options_.paused);
+        last_tick_ = std::chrono::steady_clock::now();
+    }
     shown_ = std::move(frame);
     uploadImage();
     if (history_pending_ && pixel_selected_ && shownHasHistory()) printHistory();
+}
+
+}  // namespace raster::tools
+
+namespace raster::tools {
+
+bool Viewer::performTime(const Action& a) {
+    if (!playback_.known()) return false;  // the first frame tells whether the scene is animated
+    if (!playback_.animated()) {
+        if (!said_static_)
+            say(options_.scene + " is static: the time keys (Space . , + - Home) change nothing");
+        said_static_ = true;
+        return true;
+    }
+    bool moved = false;
+    switch (a.verb) {
+        case Verb::TogglePlay:
+            playback_.setPlaying(!playback_.playing());
+            last_tick_ = std::chrono::steady_clock::now();  // play resumes from now, without a jump
+            break;
+        case Verb::StepFrame:
+            moved = playback_.step(a.x);
+            break;
+        case Verb::RestartTime:
+            moved = playback_.restart();
+            break;
+        case Verb::Faster:
+        case Verb::Slower:
+            a.verb == Verb::Faster ? playback_.faster() : playback_.slower();
+            say(playback_.label());
+            break;
+        default:
+            break;
+    }
+    if (moved) requestRender();
+    return true;
+}
+
+void Viewer::playOn() {
+    const auto now = std::chrono::steady_clock::now();
+    const double elapsed = std::chrono::duration<double>(now - last_tick_).count();
+    // The next frame is asked for once the last one is shown: as fast as frames render.
+    if (!playback_.playing() || !upToDate()) return;
+    last_tick_ = now;
+    if (playback_.tick(elapsed)) requestRender();
+    dirty_ = true;
 }
 
 }  // namespace raster::tools

@@ -16,6 +16,7 @@
 // the frame, at its size, camera and step, and only while a solution view is shown.
 #pragma once
 
+#include <chrono>
 #include <deque>
 #include <memory>
 #include <string>
@@ -23,6 +24,7 @@
 
 #include "actions.hpp"
 #include "compare_views.hpp"
+#include "playback.hpp"
 #include "raster/image_io.hpp"
 #include "render_worker.hpp"
 #include "step_cursor.hpp"
@@ -48,6 +50,9 @@ struct ViewerOptions {
     bool headless = false;
     std::vector<Action> script;
     std::string screenshotDir = ".";
+    // An animated scene starts paused (Space plays). Headless runs always start paused, so that a
+    // script's frames are those of its keys (. , Home), never of the machine's speed.
+    bool paused = false;
     bool screenshotWindow = false;  // also save the window, text included, as <shot>-window.png
     // What K shows and J compares with: "reference" (this scene through the reference pipeline),
     // a scene of sceneNames(), or a .png file; empty: a lab's own solution scene (solutionSceneOf),
@@ -80,6 +85,7 @@ class Viewer {
     // Every line the viewer printed to stdout (click reports, pixel histories, screenshot paths).
     const std::vector<std::string>& messages() const { return messages_; }
     ImageView imageView() const { return view_; }
+    const Playback& playback() const { return playback_; }
     Stage stage() const { return stage_; }
     // What the views say about the shown image (the overdraw's maximum, ...), as the HUD shows it.
     const std::vector<std::string>& viewNotes() const { return view_notes_; }
@@ -89,6 +95,8 @@ class Viewer {
     // False when the action must wait (for the frame's shape, or for the latest render).
     bool perform(const Action& action);
     void runQueue();
+    bool performTime(const Action& action);  // the time keys (Space . , Home + -)
+    void playOn();                           // while playing: the clock moves, the next frame is asked for
     void requestRender();
     void followWindowSize();
     void show(std::shared_ptr<RenderedFrame> frame);
@@ -155,6 +163,10 @@ class Viewer {
     int press_x_ = 0, press_y_ = 0, last_x_ = 0, last_y_ = 0;
     int screenshot_counter_ = 0;
     std::vector<std::string> screenshots_, messages_;
+
+    Playback playback_;
+    std::chrono::steady_clock::time_point last_tick_;
+    bool said_static_ = false;
 
     std::unique_ptr<RenderWorker> worker_;  // last: joined before the window goes
 };

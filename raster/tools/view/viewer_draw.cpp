@@ -35,6 +35,13 @@ std::vector<uint8_t> depthImage(const DepthTarget& depth) {
     return rgba;
 }
 
+// An animated scene's clock, as screenshots name it: "t 3.050 s".
+std::string timeText(double seconds) {
+    char text[32];
+    std::snprintf(text, sizeof text, "t %.3f s", seconds);
+    return text;
+}
+
 std::string milliseconds(double ms) {
     char text[32];
     std::snprintf(text, sizeof text, "%.1f ms", ms);
@@ -256,11 +263,15 @@ void Viewer::composeWindow() {
                             milliseconds(shown_->milliseconds) + (shown_->trace ? " (traced)" : "") +
                             (viewName() != "colour" ? "  [" + viewName() + "]" : "") + "   H: help");
         hud.lines.push_back(shown_->request.stepLabel);
+        if (playback_.animated()) hud.lines.push_back(playback_.label() + "   Space . , + - Home");
         hud.lines.insert(hud.lines.end(), view_notes_.begin(), view_notes_.end());
     }
-    if (!upToDate()) {
+    // While playing, frames follow each other: their progress shows only when one takes long.
+    const std::optional<RunningRender> running_now = worker_->running();
+    const bool slow = !playback_.playing() || (running_now && running_now->seconds > 0.5);
+    if (!upToDate() && slow) {
         // Between the request and the worker taking it up, nothing runs yet: 0 s, no draw.
-        const RunningRender running = worker_->running().value_or(RunningRender{});
+        const RunningRender running = running_now.value_or(RunningRender{});
         // The frame's draws are its scene's, whatever the step (later draws are skipped, not
         // left out); the solution's are known once one has been rendered.
         const uint32_t total = running.solution ? solution_draws_ : cursor_.drawCount();
@@ -342,7 +353,8 @@ void Viewer::saveScreenshot() {
     writePngRgba8(path, shown_->color.width(), shown_->color.height(), image_);
     screenshots_.push_back(path);
     say("screenshot " + path + " (" + std::to_string(shown_->color.width()) + "x" +
-        std::to_string(shown_->color.height()) + ", " + viewName() + ", " + shown_->request.stepLabel + ")");
+        std::to_string(shown_->color.height()) + ", " + viewName() + ", " + shown_->request.stepLabel +
+        (shown_->animated ? ", " + timeText(shown_->sceneTime) : "") + ")");
     if (!options_.screenshotWindow) return;
     // The window as the user sees it, text included: composed, read back, then presented.
     composeWindow();
