@@ -254,6 +254,7 @@ class ForestScene final : public ClockedScene {
         shaders::appendStaticBillboard(ground, {0, 0, 0}, {40, 0, 0}, {0, 0, -40}, glm::vec4(1.0f));
         for (StaticBillboardIn& g : ground)
             g.tex = {g.position.x / 4.0f, g.position.z / 4.0f};  // 2 m squares
+        tree_vertices_ = trees;
         trees_ = VertexBuffer::create(trees), shrubs_ = VertexBuffer::create(shrubs),
         ground_ = VertexBuffer::create(ground);
         counts_ = {uint32_t(trees.size()), uint32_t(shrubs.size()), uint32_t(ground.size())};
@@ -270,20 +271,36 @@ class ForestScene final : public ClockedScene {
         const glm::mat3 turn(glm::rotate(glm::mat4(1.0f), angle, glm::vec3(0, 1, 0)));
         const SceneCamera camera{turn * camera_.eye, turn * camera_.target};
         const glm::mat4 view_proj = proj_ * sceneView(camera);
+        // Nearest first, so that the early depth test rejects what they hide before it is shaded: the
+        // trees from the nearest, the shrubs, then the ground (1.6 million pixel shader calls instead of 2.7 at
+        // 1280×720). Opaque writes under depth Less: the order shows only where two depths are equal.
         shaders::PsAlphaTested ps;
-        ps.sampler = SamplerState::point(AddressMode::Wrap);
-        ps.texture = &ground_tex_;
-        drawStatic(context, ground_, counts_[2], view_proj, ps);
-        ps.sampler = SamplerState::point(AddressMode::Clamp);
-        ps.texture = &shrubs_tex_;
-        drawStatic(context, shrubs_, counts_[1], view_proj, ps);
         ps.texture = &trees_tex_;
+        sortTreesNearestFirst(camera.eye);
         context.setInputLayout(&tree_layout_);
         context.setVertexBuffer(0, &trees_);
         context.draw(shaders::VsAxisBillboard{view_proj, camera.eye, {0, 1, 0}}, ps, counts_[0]);
+        ps.texture = &shrubs_tex_;
+        drawStatic(context, shrubs_, counts_[1], view_proj, ps);
+        ps.sampler = SamplerState::point(AddressMode::Wrap);
+        ps.texture = &ground_tex_;
+        drawStatic(context, ground_, counts_[2], view_proj, ps);
     }
 
   private:
+    // Refills the trees' buffer in the order of their distance to the eye (ties by index: deterministic).
+    void sortTreesNearestFirst(glm::vec3 eye) {
+        std::vector<std::pair<float, uint32_t>> order;
+        for (uint32_t k = 0; k < kTrees; ++k) {
+            const glm::vec3 d = tree_vertices_[6 * k].base - eye;
+            order.push_back({glm::dot(d, d), k});
+        }
+        std::sort(order.begin(), order.end());
+        std::vector<shaders::AxisBillboardIn> sorted;
+        for (const auto& [distance, k] : order)
+            sorted.insert(sorted.end(), tree_vertices_.begin() + 6 * k, tree_vertices_.begin() + 6 * (k + 1));
+        trees_.update(std::span<const shaders::AxisBillboardIn>(sorted));
+    }
     void drawStatic(Context& context, const VertexBuffer& buffer, uint32_t count, const glm::mat4& view_proj,
                     const shaders::PsAlphaTested& ps) {
         context.setInputLayout(&static_layout_);
@@ -294,6 +311,7 @@ class ForestScene final : public ClockedScene {
     SceneCamera camera_;
     glm::mat4 proj_;
     Texture2D trees_tex_, shrubs_tex_, ground_tex_;
+    std::vector<shaders::AxisBillboardIn> tree_vertices_;  // six a tree, in k order
     VertexBuffer trees_, shrubs_, ground_;
     std::array<uint32_t, 3> counts_{};
     InputLayout tree_layout_, static_layout_;
