@@ -92,6 +92,9 @@ bad --fps inf render fire --frames 2 --fps inf
 bad --time -1 render fire --time -1
 bad --time nan render fire --time nan
 bad --time 601 render fire --time 601
+bad --fov 0 render sprites --fov 0
+bad --fov 180 render sprites --fov 180
+bad --fov nan bench sprites --fov nan
 bad --time "" bench fire --time
 bad --seed -1 bench fire --seed -1
 bad --frames "static" render fog --frames 2
@@ -169,10 +172,10 @@ helps() {
     grep -qF -- "$option" "$tmp/out" || fail "raster $command --help does not list $option"
   done
 }
-helps bench --width --height --count --seed --cubes --fog --time --texture --frames --threads --out --reference --plain \
+helps bench --width --height --fov --count --seed --cubes --fog --time --texture --frames --threads --out --reference --plain \
   --no-error --turbulence particles-sim
-helps render --out-dir --width --height --count --seed --time --frames --fps --reference --plain --view --list
-helps trace --stats --pixel --json --draw --limit --width --height --count --seed --cubes --fog --threads --reference --plain
+helps render --out-dir --width --height --fov --count --seed --time --frames --fps --reference --plain --view --list
+helps trace --stats --pixel --json --draw --limit --width --height --fov --count --seed --cubes --fog --threads --reference --plain
 helps view --size --count --seed --cubes --fog --threads --reference --plain --headless --script --screenshot-dir \
   --screenshot-window --solution "keys:"
 helps microbench --benchmark_filter "Google Benchmark"
@@ -225,7 +228,8 @@ cmp -s "$tmp/frames/fire.png" "$tmp/frames/fire_0001.png" || fail "frame 1 from 
 ! cmp -s "$tmp/frames/fire_0000.png" "$tmp/frames/fire_0001.png" || fail "frames 0 and 1 of the fire are the same"
 # --frames without a scene: the animated ones only.
 run 0 render --frames 1 --width 16 --height 16 --out-dir "$tmp/anim"
-[[ $(ls "$tmp/anim") == fire_0000.png ]] || fail "render --frames 1 wrote $(ls "$tmp/anim")"
+[[ $(ls "$tmp/anim" | tr '\n' ' ') == "fire_0000.png forest_0000.png sprites_0000.png " ]] ||
+  fail "render --frames 1 wrote $(ls "$tmp/anim")"
 run 0 bench fire --width 64 --height 36 --frames 2 --count 200 --time 1 --seed 3 --no-error
 grep -q '^raster fire 64x36 ms_per_frame_median=[0-9.]* frames=2$' "$tmp/out" || fail "bench fire printed: $(cat "$tmp/out")"
 run 0 trace particles --count 20 --width 64 --height 36 --pixel 32,18 --json --threads 1

@@ -52,8 +52,10 @@ std::string labText(const std::string& path) {
 TEST(Labs, BillboardsIsRegisteredWithItsSolution) {
     const std::vector<std::string> names = sceneNames();
     EXPECT_EQ(names[0], "fire");
-    EXPECT_EQ(names[1], "particles");
-    EXPECT_EQ(names[2], "fog");
+    EXPECT_EQ(names[1], "sprites");
+    EXPECT_EQ(names[2], "forest");
+    EXPECT_EQ(names[3], "particles");
+    EXPECT_EQ(names[4], "fog");
     EXPECT_NE(std::find(names.begin(), names.end(), "billboards"), names.end());
     EXPECT_NE(std::find(names.begin(), names.end(), "billboards@solution"), names.end());
     EXPECT_EQ(solutionSceneOf("billboards"), "billboards@solution");

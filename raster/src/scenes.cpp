@@ -11,7 +11,8 @@
 namespace raster {
 
 glm::mat4 sceneProjection(const SceneOptions& o) {
-    return glm::perspectiveRH_ZO(glm::radians(60.0f), float(o.width) / float(o.height), 0.1f, 100.0f);
+    const float fov_degrees = o.fovDegrees.value_or(60.0f);
+    return glm::perspectiveRH_ZO(glm::radians(fov_degrees), float(o.width) / float(o.height), 0.1f, 100.0f);
 }
 
 glm::mat4 sceneView(const SceneCamera& c) { return glm::lookAtRH(c.eye, c.target, glm::vec3(0, 1, 0)); }
@@ -72,7 +73,8 @@ void registerScene(SceneEntry entry) {
     for (char c : n)
         RASTER_REQUIRE((c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' || c == '-' || c == '@',
                        InvalidArgument, "scene name '" + n + "' may hold only a-z, 0-9, _, - and @");
-    RASTER_REQUIRE(n != "fire" && n != "particles" && n != "fog" && !registry().contains(n), InvalidArgument,
+    const bool builtin = n == "fire" || n == "sprites" || n == "forest" || n == "particles" || n == "fog";
+    RASTER_REQUIRE(!builtin && !registry().contains(n), InvalidArgument,
                    "scene '" + n + "' is registered twice (two labs of one name?)");
     RASTER_REQUIRE(entry.make != nullptr, InvalidArgument, "scene '" + n + "' is registered without a factory");
     registry().emplace(n, std::move(entry));
@@ -90,13 +92,15 @@ std::string solutionSceneOf(std::string_view name) {
 }
 
 std::vector<std::string> sceneNames() {
-    std::vector<std::string> names = {"fire", "particles", "fog"};
+    std::vector<std::string> names = {"fire", "sprites", "forest", "particles", "fog"};
     for (const auto& [name, entry] : registry()) names.push_back(name);
     return names;
 }
 
 SceneCamera defaultCamera(std::string_view name) {
     if (name == "fire") return kFireCamera;
+    if (name == "sprites") return kSpritesCamera;
+    if (name == "forest") return kForestCamera;
     if (name == "particles") return kParticlesCamera;
     if (name == "fog") return kFogCamera;
     if (const SceneEntry* entry = findRegisteredScene(name)) return entry->camera;
@@ -129,11 +133,18 @@ std::unique_ptr<Scene> makeScene(std::string_view name, const SceneOptions& opti
         RASTER_REQUIRE(std::isfinite(t) && t >= 0.0 && t <= kMaxStartTime, InvalidArgument,
                        "start time " + secondsText(t) + " is outside [0, " + secondsText(kMaxStartTime) + "]");
     }
+    if (options.fovDegrees) {
+        const float fov = *options.fovDegrees;
+        RASTER_REQUIRE(std::isfinite(fov) && fov > 0.0f && fov <= 179.0f, InvalidArgument,
+                       "field of view " + std::to_string(fov) + " degrees is outside (0, 179]");
+    }
     if (options.count) {
         RASTER_REQUIRE(*options.count <= 50'000'000, InvalidArgument,
                        "particle count " + std::to_string(*options.count) + " is above 50000000");
     }
     if (name == "fire") return makeFireScene(options);
+    if (name == "sprites") return makeSpritesScene(options);
+    if (name == "forest") return makeForestScene(options);
     if (name == "particles") return makeParticlesScene(options);
     if (name == "fog") {
         RASTER_REQUIRE(options.cubes <= 1024, InvalidArgument,

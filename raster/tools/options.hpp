@@ -153,14 +153,17 @@ inline CLI::App* addCommand(CLI::App& app, const std::string& name, const std::s
 
 // The positional scene name: one of sceneNames() (the lecture's scenes, the labs, their solutions).
 inline CLI::Option* addSceneName(CLI::App& command, std::string& name) {
-    return command.add_option("scene", name, "fire, particles, fog, or a lab (raster render --list)")
+    return command.add_option("scene", name, "fire, sprites, forest, particles, fog, or a lab (raster render --list)")
         ->check(CLI::IsMember(sceneNames()));
 }
 
-// --width, --height: the image's size in pixels (bench, render, trace).
+// --width, --height: the image's size in pixels; --fov: the field of view (bench, render, trace).
 inline void addSizeOptions(CLI::App& command, SceneOptions& options) {
     addWholeNumber(command, "--width", options.width, 1, RenderTarget::kMaxSize, "image width in pixels");
     addWholeNumber(command, "--height", options.height, 1, RenderTarget::kMaxSize, "image height in pixels");
+    addRealNumber(
+        command, "--fov", 0.0, 179.0, true, [&options](double d) { options.fovDegrees = float(d); },
+        "the vertical field of view in degrees (60); wide angles show the sprites' edge effects");
 }
 
 // --count, --seed, --cubes, --fog: what the lecture's scenes and the labs hold (bench, trace, view).

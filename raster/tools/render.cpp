@@ -38,6 +38,11 @@ void listScenes() {
     for (const std::string& name : sceneNames()) {
         const SceneEntry* entry = findRegisteredScene(name);
         const char* title = name == "fire"        ? "the lecture's fire over the occluder, animated (a particle system)"
+                            : name == "sprites"
+                                ? "sprites three ways, rows top to bottom: (a) classic transforms, (b) own transform, "
+                                  "(c) geometry shader, then turned to the eye; animated (try --fov 120)"
+                            : name == "forest"
+                                ? "trees as axis billboards, shrubs as billboard clouds, alpha tested; the camera orbits"
                             : name == "particles" ? "the lecture's fire billboards (../shared/bench/SCENES.md)"
                             : name == "fog"     ? "cubes on a ground plane in fog (../shared/bench/SCENES.md)"
                             : entry             ? entry->title.c_str()

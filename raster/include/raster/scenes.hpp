@@ -1,4 +1,6 @@
-// The lecture's scenes: `fire` (a particle system burning over the occluder, animated), and the two
+// The lecture's scenes: `fire` (a particle system burning over the occluder, animated), `sprites` (the
+// lecture's three ways of drawing a sprite, animated) and `forest` (axis billboards and billboard
+// clouds, alpha tested, animated), and the two
 // that ../shared/bench/SCENES.md defines to the last constant, `particles` (fire billboards over an
 // occluder) and `fog` (cubes on a ground plane in fog); and the labs' scenes: each lab (labs/<name>/, see raster/lab.hpp) registers `<name>`, its solution
 // (solutions/<name>/) `<name>@solution`.
@@ -40,6 +42,10 @@ struct SceneOptions {
     // The simulation's seed, in scenes that simulate (fire: ParticleSystemDesc::seed; the labs that
     // simulate); the lecture's particles and fog are fixed functions of the count and have none.
     uint32_t seed = 0;
+    // The vertical field of view in degrees, in (0, 179]; unset, SCENES.md's 60° (every scene's
+    // projection is sceneProjection(options)). Wide angles show how sprites differ near the image's
+    // edges (the `sprites` scene, docs/PARTICLES.md).
+    std::optional<float> fovDegrees;
     // Overrides the scene's camera. Unset, the scene is exactly SCENES.md's (what `raster bench`
     // measures); set to defaultCamera(name), it renders the same image bit for bit.
     std::optional<SceneCamera> camera;
@@ -82,7 +88,7 @@ protected:
 
 // Throws Error(InvalidArgument) for an unknown scene name or an option out of range.
 std::unique_ptr<Scene> makeScene(std::string_view name, const SceneOptions& options);
-// The lecture's scenes first (fire, particles, fog), then the registered ones in name order.
+// The lecture's scenes first (fire, sprites, forest, particles, fog), then the registered ones in name order.
 std::vector<std::string> sceneNames();
 // SCENES.md's camera of a scene, or a registered scene's. Throws Error(InvalidArgument) for an
 // unknown scene name.
@@ -107,7 +113,7 @@ const SceneEntry* findRegisteredScene(std::string_view name);
 std::string solutionSceneOf(std::string_view name);
 
 // SCENES.md's camera conventions, for every scene: glm::perspectiveRH_ZO with a 60° vertical field of
-// view, the options' aspect, near 0.1 and far 100; glm::lookAtRH from eye to target with +y up.
+// view (or the options' fovDegrees), the options' aspect, near 0.1 and far 100; glm::lookAtRH from eye to target with +y up.
 glm::mat4 sceneProjection(const SceneOptions& options);
 glm::mat4 sceneView(const SceneCamera& camera);
 
