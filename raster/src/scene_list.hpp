@@ -15,6 +15,15 @@ constexpr SceneCamera kFogCamera{{0, 1.5f, 6}, {0, 0.5f, -10}};
 // The fire's: SCENES.md's particles camera brought closer and lowered to the flames.
 constexpr SceneCamera kFireCamera{{0, -0.1f, 2.5f}, {0, -0.55f, 0}};
 
+// The options of a ParticleSceneData that holds only the occluder (count 0: its own particles are not
+// drawn) seen from `camera` unless the options set one: for the scenes that draw particles of their own.
+inline SceneOptions occluderOnly(const SceneOptions& o, const SceneCamera& camera) {
+    SceneOptions occluder = o;
+    occluder.camera = o.camera.value_or(camera);
+    occluder.count = 0;
+    return occluder;
+}
+
 // Options already checked by makeScene.
 std::unique_ptr<Scene> makeParticlesScene(const SceneOptions& options);
 std::unique_ptr<Scene> makeFogScene(const SceneOptions& options);

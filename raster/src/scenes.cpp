@@ -6,6 +6,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "scene_blending.hpp"
 #include "scene_list.hpp"
 
 namespace raster {
@@ -54,6 +55,12 @@ std::map<std::string, SceneEntry, std::less<>>& registry() {
     return entries;
 }
 
+bool isBlendingScene(std::string_view name) {
+    for (std::string_view n : blendingSceneNames())
+        if (n == name) return true;
+    return false;
+}
+
 std::string knownScenes() {
     std::string text;
     for (const std::string& n : sceneNames()) text += (text.empty() ? "" : ", ") + n;
@@ -72,7 +79,8 @@ void registerScene(SceneEntry entry) {
     for (char c : n)
         RASTER_REQUIRE((c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' || c == '-' || c == '@',
                        InvalidArgument, "scene name '" + n + "' may hold only a-z, 0-9, _, - and @");
-    RASTER_REQUIRE(n != "fire" && n != "particles" && n != "fog" && !registry().contains(n), InvalidArgument,
+    RASTER_REQUIRE(n != "fire" && n != "particles" && n != "fog" && !isBlendingScene(n) && !registry().contains(n),
+                   InvalidArgument,
                    "scene '" + n + "' is registered twice (two labs of one name?)");
     RASTER_REQUIRE(entry.make != nullptr, InvalidArgument, "scene '" + n + "' is registered without a factory");
     registry().emplace(n, std::move(entry));
@@ -91,6 +99,7 @@ std::string solutionSceneOf(std::string_view name) {
 
 std::vector<std::string> sceneNames() {
     std::vector<std::string> names = {"fire", "particles", "fog"};
+    for (std::string_view name : blendingSceneNames()) names.emplace_back(name);
     for (const auto& [name, entry] : registry()) names.push_back(name);
     return names;
 }
@@ -99,6 +108,7 @@ SceneCamera defaultCamera(std::string_view name) {
     if (name == "fire") return kFireCamera;
     if (name == "particles") return kParticlesCamera;
     if (name == "fog") return kFogCamera;
+    if (isBlendingScene(name)) return kBlendCamera;
     if (const SceneEntry* entry = findRegisteredScene(name)) return entry->camera;
     unknownScene(name);
 }
@@ -140,6 +150,7 @@ std::unique_ptr<Scene> makeScene(std::string_view name, const SceneOptions& opti
                        "cube count " + std::to_string(options.cubes) + " per side is above 1024");
         return makeFogScene(options);
     }
+    if (std::unique_ptr<Scene> figure = makeBlendingScene(name, options)) return figure;
     const SceneEntry* entry = findRegisteredScene(name);
     if (!entry) unknownScene(name);
     std::unique_ptr<Scene> scene = entry->make(entry->name, options);
