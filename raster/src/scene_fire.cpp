@@ -72,17 +72,10 @@ ParticleSystemDesc fireDesc(uint32_t count, uint64_t seed) {
     return desc;
 }
 
-SceneOptions occluderOptions(const SceneOptions& o) {
-    SceneOptions occluder = o;
-    occluder.camera = o.camera.value_or(kFireCamera);
-    occluder.count = 0;  // ParticleSceneData's own particles are not drawn
-    return occluder;
-}
-
 class FireScene final : public Scene {
   public:
     explicit FireScene(const SceneOptions& o)
-        : data_(occluderOptions(o)), system_(fireDesc(o.count.value_or(kDefaultFireCount), o.seed)) {
+        : data_(occluderOnly(o, kFireCamera)), system_(fireDesc(o.count.value_or(kDefaultFireCount), o.seed)) {
         const glm::mat4 proj = sceneProjection(o);
         gs_.viewProj = data_.viewProj;
         gs_.projScale = {proj[0][0], proj[1][1]};

@@ -20,6 +20,14 @@ constexpr SceneCamera kFireCamera{{0, -0.1f, 2.5f}, {0, -0.55f, 0}};
 // disc of radius 7.5, at eye height; the scene orbits it about the vertical).
 constexpr SceneCamera kSpritesCamera{{0, 0, 6}, {0, 0, 0}};
 constexpr SceneCamera kForestCamera{{0, 1.7f, 11}, {0, 1.6f, 0}};
+// The options of a ParticleSceneData that holds only the occluder (count 0: its own particles are not
+// drawn) seen from `camera` unless the options set one: for the scenes that draw particles of their own.
+inline SceneOptions occluderOnly(const SceneOptions& o, const SceneCamera& camera) {
+    SceneOptions occluder = o;
+    occluder.camera = o.camera.value_or(camera);
+    occluder.count = 0;
+    return occluder;
+}
 
 // Options already checked by makeScene.
 std::unique_ptr<Scene> makeParticlesScene(const SceneOptions& options);

@@ -2,10 +2,11 @@
 
 #include <cmath>
 #include <cstdio>
-#include <map>
-
 #include <glm/gtc/matrix_transform.hpp>
+#include <map>
+#include <vector>
 
+#include "scene_blending.hpp"
 #include "scene_list.hpp"
 
 namespace raster {
@@ -15,7 +16,9 @@ glm::mat4 sceneProjection(const SceneOptions& o) {
     return glm::perspectiveRH_ZO(glm::radians(fov_degrees), float(o.width) / float(o.height), 0.1f, 100.0f);
 }
 
-glm::mat4 sceneView(const SceneCamera& c) { return glm::lookAtRH(c.eye, c.target, glm::vec3(0, 1, 0)); }
+glm::mat4 sceneView(const SceneCamera& c) {
+    return glm::lookAtRH(c.eye, c.target, glm::vec3(0, 1, 0));
+}
 
 namespace {
 
@@ -55,6 +58,46 @@ std::map<std::string, SceneEntry, std::less<>>& registry() {
     return entries;
 }
 
+// The library's own scenes, in the order listings show them: the lecture's first.
+struct BuiltinScene {
+    std::string_view name;
+    SceneCamera camera;
+    std::unique_ptr<Scene> (*make)(std::string_view name, const SceneOptions& options);  // options checked
+};
+
+template <std::unique_ptr<Scene> (*make)(const SceneOptions&)>
+std::unique_ptr<Scene> makeNamed(std::string_view, const SceneOptions& options) {
+    return make(options);
+}
+
+std::unique_ptr<Scene> makeFogChecked(std::string_view, const SceneOptions& options) {
+    RASTER_REQUIRE(options.cubes <= 1024, InvalidArgument,
+                   "cube count " + std::to_string(options.cubes) + " per side is above 1024");
+    return makeFogScene(options);
+}
+
+const std::vector<BuiltinScene>& builtinScenes() {
+    static const std::vector<BuiltinScene> scenes = [] {
+        std::vector<BuiltinScene> list = {
+            {"fire", kFireCamera, makeNamed<makeFireScene>},
+            {"sprites", kSpritesCamera, makeNamed<makeSpritesScene>},
+            {"forest", kForestCamera, makeNamed<makeForestScene>},
+            {"particles", kParticlesCamera, makeNamed<makeParticlesScene>},
+            {"fog", kFogCamera, makeFogChecked},
+        };
+        for (std::string_view name : blendingSceneNames())
+            list.push_back({name, kBlendCamera, makeBlendingScene});
+        return list;
+    }();
+    return scenes;
+}
+
+const BuiltinScene* findBuiltinScene(std::string_view name) {
+    for (const BuiltinScene& scene : builtinScenes())
+        if (scene.name == name) return &scene;
+    return nullptr;
+}
+
 std::string knownScenes() {
     std::string text;
     for (const std::string& n : sceneNames()) text += (text.empty() ? "" : ", ") + n;
@@ -62,21 +105,23 @@ std::string knownScenes() {
 }
 
 [[noreturn]] void unknownScene(std::string_view name) {
-    throw Error(ErrorCode::InvalidArgument, "unknown scene '" + std::string(name) + "' (known: " + knownScenes() + ")");
+    throw Error(ErrorCode::InvalidArgument,
+                "unknown scene '" + std::string(name) + "' (known: " + knownScenes() + ")");
 }
 
 }  // namespace
 
 void registerScene(SceneEntry entry) {
     const std::string& n = entry.name;
-    RASTER_REQUIRE(!n.empty() && n.size() <= 64, InvalidArgument, "a registered scene needs a name of 1..64 characters");
+    RASTER_REQUIRE(!n.empty() && n.size() <= 64, InvalidArgument,
+                   "a registered scene needs a name of 1..64 characters");
     for (char c : n)
         RASTER_REQUIRE((c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' || c == '-' || c == '@',
                        InvalidArgument, "scene name '" + n + "' may hold only a-z, 0-9, _, - and @");
-    const bool builtin = n == "fire" || n == "sprites" || n == "forest" || n == "particles" || n == "fog";
-    RASTER_REQUIRE(!builtin && !registry().contains(n), InvalidArgument,
+    RASTER_REQUIRE(!findBuiltinScene(n) && !registry().contains(n), InvalidArgument,
                    "scene '" + n + "' is registered twice (two labs of one name?)");
-    RASTER_REQUIRE(entry.make != nullptr, InvalidArgument, "scene '" + n + "' is registered without a factory");
+    RASTER_REQUIRE(entry.make != nullptr, InvalidArgument,
+                   "scene '" + n + "' is registered without a factory");
     registry().emplace(n, std::move(entry));
 }
 
@@ -92,17 +137,14 @@ std::string solutionSceneOf(std::string_view name) {
 }
 
 std::vector<std::string> sceneNames() {
-    std::vector<std::string> names = {"fire", "sprites", "forest", "particles", "fog"};
+    std::vector<std::string> names;
+    for (const BuiltinScene& scene : builtinScenes()) names.emplace_back(scene.name);
     for (const auto& [name, entry] : registry()) names.push_back(name);
     return names;
 }
 
 SceneCamera defaultCamera(std::string_view name) {
-    if (name == "fire") return kFireCamera;
-    if (name == "sprites") return kSpritesCamera;
-    if (name == "forest") return kForestCamera;
-    if (name == "particles") return kParticlesCamera;
-    if (name == "fog") return kFogCamera;
+    if (const BuiltinScene* scene = findBuiltinScene(name)) return scene->camera;
     if (const SceneEntry* entry = findRegisteredScene(name)) return entry->camera;
     unknownScene(name);
 }
@@ -122,16 +164,18 @@ std::unique_ptr<Scene> makeScene(std::string_view name, const SceneOptions& opti
         // Look-at needs a direction, and one that is not vertical (+y is its up).
         bool finite = true;
         for (int k = 0; k < 3; ++k) finite = finite && std::isfinite(c.eye[k]) && std::isfinite(c.target[k]);
-        RASTER_REQUIRE(finite && view.x * view.x + view.z * view.z > 1e-12f * glm::dot(view, view) &&
-                           glm::dot(view, view) > 0.0f,
-                       InvalidArgument,
-                       "camera eye " + text(c.eye) + " and target " + text(c.target) +
-                           " do not make a view direction (they must be finite, apart, and not one above the other)");
+        RASTER_REQUIRE(
+            finite && view.x * view.x + view.z * view.z > 1e-12f * glm::dot(view, view) &&
+                glm::dot(view, view) > 0.0f,
+            InvalidArgument,
+            "camera eye " + text(c.eye) + " and target " + text(c.target) +
+                " do not make a view direction (they must be finite, apart, and not one above the other)");
     }
     if (options.time) {
         const double t = *options.time;
-        RASTER_REQUIRE(std::isfinite(t) && t >= 0.0 && t <= kMaxStartTime, InvalidArgument,
-                       "start time " + secondsText(t) + " is outside [0, " + secondsText(kMaxStartTime) + "]");
+        RASTER_REQUIRE(
+            std::isfinite(t) && t >= 0.0 && t <= kMaxStartTime, InvalidArgument,
+            "start time " + secondsText(t) + " is outside [0, " + secondsText(kMaxStartTime) + "]");
     }
     if (options.fovDegrees) {
         const float fov = *options.fovDegrees;
@@ -142,14 +186,10 @@ std::unique_ptr<Scene> makeScene(std::string_view name, const SceneOptions& opti
         RASTER_REQUIRE(*options.count <= 50'000'000, InvalidArgument,
                        "particle count " + std::to_string(*options.count) + " is above 50000000");
     }
-    if (name == "fire") return makeFireScene(options);
-    if (name == "sprites") return makeSpritesScene(options);
-    if (name == "forest") return makeForestScene(options);
-    if (name == "particles") return makeParticlesScene(options);
-    if (name == "fog") {
-        RASTER_REQUIRE(options.cubes <= 1024, InvalidArgument,
-                       "cube count " + std::to_string(options.cubes) + " per side is above 1024");
-        return makeFogScene(options);
+    if (const BuiltinScene* builtin = findBuiltinScene(name)) {
+        std::unique_ptr<Scene> scene = builtin->make(name, options);
+        RASTER_CHECK(scene && scene->name() == name);
+        return scene;
     }
     const SceneEntry* entry = findRegisteredScene(name);
     if (!entry) unknownScene(name);

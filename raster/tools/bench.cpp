@@ -3,7 +3,8 @@
 // reference pipeline. An animated scene (fire) moves on by kBenchFrameSeconds before each frame,
 // inside the timing: a frame is then the simulation's step, the upload and the drawing.
 // raster bench particles-sim: times K fixed steps of the particle simulation alone
-// (particle_workload.hpp) and prints the median step time.
+// (particle_workload.hpp) and prints the median step time. raster bench blend-figures times the blend
+// figures and compares them (bench_blend.cpp).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -13,6 +14,8 @@
 
 #include <sys/resource.h>
 
+#include "bench_blend.hpp"
+#include "bench_timing.hpp"
 #include "commands.hpp"
 #include "options.hpp"
 #include "particle_workload.hpp"
@@ -63,23 +66,14 @@ int runParticlesSim(const BenchArgs& args) {
 
 int runBench(const BenchArgs& args) {
     if (args.scene == kParticlesSim) return runParticlesSim(args);
+    if (args.scene == kBlendFigures) return runBlendFigures(args.options, args.frames, args.threads, args.out);
     const SceneOptions& options = args.options;
     const uint32_t frames = args.frames, threads = args.threads;
     std::unique_ptr<Scene> scene = makeScene(args.scene, options);
     Context context({threads, args.reference, args.plain});
     RenderTarget color(options.width, options.height);
     DepthTarget depth(options.width, options.height);
-
-    scene->render(context, color, depth);  // warm-up
-    std::vector<double> ms;
-    for (uint32_t f = 0; f < frames; ++f) {
-        const auto t0 = std::chrono::steady_clock::now();
-        if (scene->animated()) scene->advance(kBenchFrameSeconds);
-        scene->render(context, color, depth);
-        ms.push_back(
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-    }
-    std::sort(ms.begin(), ms.end());
+    const std::vector<double> ms = timeFrames(*scene, context, color, depth, frames, kBenchFrameSeconds);
     if (!args.out.empty()) color.savePng(args.out);
 
     const PipelineStatistics& stats = context.frameStatistics();
@@ -117,7 +111,9 @@ Command addBench(CLI::App& app) {
     auto args = std::make_shared<BenchArgs>();
     std::vector<std::string> names = sceneNames();
     names.push_back(kParticlesSim);
-    command->add_option("scene", args->scene, "particles, fog, a lab (raster render --list), or particles-sim")
+    names.push_back(kBlendFigures);
+    command->add_option("scene", args->scene,
+                        "particles, fog, a lab (raster render --list), particles-sim or blend-figures")
         ->check(CLI::IsMember(names))
         ->required();
     addSizeOptions(*command, args->options);
@@ -138,7 +134,10 @@ Command addBench(CLI::App& app) {
         "at --time and moves on by 1/60 s before each frame, inside the timing.\n"
         "particles-sim times --frames steps of the particle simulation alone (--count particles, default\n"
         "1000000, all alive; gravity, wind and drag, and curl noise with --turbulence), then prints\n"
-        "'raster particles-sim count=<N> turbulence=<0|1> ms_per_step_median=<t> steps=<K>'.");
+        "'raster particles-sim count=<N> turbulence=<0|1> ms_per_step_median=<t> steps=<K>'.\n"
+        "blend-figures times each blend-* scene (a line each, as above) and prints the differences of\n"
+        "blend-wboit and blend-unsorted from blend-sorted; --out DIR writes the figures and the\n"
+        "differences' heat maps (<scene>-diff.png) into the folder DIR.");
     return {command, [args] { return runBench(*args); }};
 }
 

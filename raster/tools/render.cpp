@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <string>
 #include <utility>
@@ -33,10 +34,24 @@ struct RenderArgs {
     bool reference = false, plain = false, viewAfter = false, list = false;
 };
 
+// The lecture's blend and depth figures (src/scene_blending.cpp, docs/BLENDING.md).
+const char* blendFigureTitle(const std::string& name) {
+    static const std::map<std::string, const char*> titles = {
+        {"blend-additive", "blend figure: additive, depth test on, depth write off (correct for fire)"},
+        {"blend-depthwrite", "blend figure: additive with depth write on (particles cut out in squares)"},
+        {"blend-nodepth", "blend figure: additive, no depth test (particles over the occluder)"},
+        {"blend-unsorted", "blend figure: \"over\" in storage order (far ones cover near ones)"},
+        {"blend-sorted", "blend figure: \"over\" sorted back to front (correct)"},
+        {"blend-wboit", "weighted blended order-independent transparency (McGuire & Bavoil 2013)"}};
+    const auto it = titles.find(name);
+    return it == titles.end() ? nullptr : it->second;
+}
+
 // --list: each scene's name and what it is.
 void listScenes() {
     for (const std::string& name : sceneNames()) {
         const SceneEntry* entry = findRegisteredScene(name);
+        const char* figure = blendFigureTitle(name);
         const char* title = name == "fire"        ? "the lecture's fire over the occluder, animated (a particle system)"
                             : name == "sprites"
                                 ? "sprites three ways, rows top to bottom: (a) classic transforms, (b) own transform, "
@@ -45,6 +60,7 @@ void listScenes() {
                                 ? "trees as axis billboards, shrubs as billboard clouds, alpha tested; the camera orbits"
                             : name == "particles" ? "the lecture's fire billboards (../shared/bench/SCENES.md)"
                             : name == "fog"     ? "cubes on a ground plane in fog (../shared/bench/SCENES.md)"
+                            : figure            ? figure
                             : entry             ? entry->title.c_str()
                                                 : "";
         std::printf("%-24s %s\n", name.c_str(), title);

@@ -2,7 +2,9 @@
 // lecture's three ways of drawing a sprite, animated) and `forest` (axis billboards and billboard
 // clouds, alpha tested, animated), and the two
 // that ../shared/bench/SCENES.md defines to the last constant, `particles` (fire billboards over an
-// occluder) and `fog` (cubes on a ground plane in fog); and the labs' scenes: each lab (labs/<name>/, see raster/lab.hpp) registers `<name>`, its solution
+// occluder) and `fog` (cubes on a ground plane in fog); the lecture's blend and depth figures,
+// `blend-additive`, `blend-depthwrite`, `blend-nodepth`, `blend-unsorted`, `blend-sorted` and
+// `blend-wboit` (src/scene_blending.cpp, docs/BLENDING.md); and the labs' scenes: each lab (labs/<name>/, see raster/lab.hpp) registers `<name>`, its solution
 // (solutions/<name>/) `<name>@solution`.
 // `raster bench`, `raster render`, the viewer and the tests all draw them through this interface.
 #pragma once
@@ -28,8 +30,8 @@ struct SceneCamera {
 struct SceneOptions {
     uint32_t width = 1280, height = 720;
     // particles: the number of billboards; fire: the particle system's slots (maxParticles; the
-    // emission rate is set so that about 3/4 of them burn at once). Unset: the scene's own,
-    // kDefaultParticleCount (particles) or kDefaultFireCount (fire).
+    // emission rate is set so that about 3/4 of them burn at once); blend-*: the particles (200 by
+    // default). Unset: the scene's own, kDefaultParticleCount (particles) or kDefaultFireCount (fire).
     std::optional<uint32_t> count;
     uint32_t cubes = 16;      // fog: cubes per side
     bool heightFog = true;    // fog: "height" (true) or "constant"
@@ -88,7 +90,8 @@ protected:
 
 // Throws Error(InvalidArgument) for an unknown scene name or an option out of range.
 std::unique_ptr<Scene> makeScene(std::string_view name, const SceneOptions& options);
-// The lecture's scenes first (fire, sprites, forest, particles, fog), then the registered ones in name order.
+// The lecture's scenes first (fire, sprites, forest, particles, fog, the blend-* figures), then the
+// registered ones in name order.
 std::vector<std::string> sceneNames();
 // SCENES.md's camera of a scene, or a registered scene's. Throws Error(InvalidArgument) for an
 // unknown scene name.
