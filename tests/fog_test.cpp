@@ -139,7 +139,9 @@ TEST(FogMedium, ExponentsNearTheEndsOfFloatDoNotOverflowInBetween) {
             detail::tReferenceMode = false;
             ASSERT_TRUE(std::isfinite(tau)) << c.y0 << " reference mode " << reference_mode;
             EXPECT_NEAR(double(tau / tau_ref), 1.0, 1e-5) << c.y0;
-            if (!reference_mode) EXPECT_EQ(tau8[4], tau) << "eight-wide equals scalar";
+            if (!reference_mode) {
+                EXPECT_EQ(tau8[4], tau) << "eight-wide equals scalar";
+            }
             for (int ch = 0; ch < 3; ++ch)
                 EXPECT_NEAR(L[ch], double(referenceRadiance(fog, ch, L0[ch], tau_ref)), 1e-6) << c.y0 << " " << ch;
         }

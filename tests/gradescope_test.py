@@ -164,6 +164,31 @@ def layout_errors(module):
     return errors
 
 
+def cpu_check_errors(module):
+    """run_autograder's check of the processor against the -march setup.sh built for."""
+    v3 = "fpu sse2 ssse3 sse4_2 popcnt avx avx2 fma bmi2 movbe f16c"
+    cases = [  # (autograder_march.txt or None, cpuinfo flags, expected (march, lacking))
+        ("x86-64-v3", v3, ("x86-64-v3", [])),
+        ("x86-64-v3", "fpu sse2 ssse3 sse4_2 popcnt avx", ("x86-64-v3", ["avx2", "fma", "bmi2", "movbe", "f16c"])),
+        ("", "fpu sse2", ("", [])),  # the baseline: runs anywhere
+        (None, "fpu sse2", ("", [])),  # no file: a build that did not say (prebuilt)
+    ]
+    errors = []
+    for march, flags, expected in cases:
+        with tempfile.TemporaryDirectory() as source:
+            os.makedirs(os.path.join(source, "build"))
+            if march is not None:
+                with open(os.path.join(source, "build", "autograder_march.txt"), "w", encoding="utf-8") as f:
+                    f.write(march + "\n")
+            cpuinfo = os.path.join(source, "cpuinfo")
+            with open(cpuinfo, "w", encoding="utf-8") as f:
+                f.write(f"processor\t: 0\nflags\t\t: {flags}\n\nprocessor\t: 1\nflags\t\t: {flags}\n")
+            got = module.missing_cpu_features(source, cpuinfo)
+            if got != expected:
+                errors.append(f"march {march!r} on flags {flags!r}: {got}, not {expected}")
+    return errors
+
+
 def run_autograder(root, env):
     """Runs root/run_autograder as Gradescope does (working directory root) and reads results.json."""
     results = os.path.join(root, "results", "results.json")
@@ -258,7 +283,8 @@ def main():
         errors += zip_errors(archive)
         unpack(archive, os.path.join(root, "source"))
     shutil.copy2(os.path.join(root, "source", "run_autograder"), os.path.join(root, "run_autograder"))
-    errors += layout_errors(load_run_autograder(os.path.join(root, "run_autograder")))
+    module = load_run_autograder(os.path.join(root, "run_autograder"))
+    errors += layout_errors(module) + cpu_check_errors(module)
     env = dict(os.environ, AUTOGRADER_ROOT=root, RASTER_AUTOGRADER_PREBUILT=build, RASTER_AUTOGRADER_JOBS="2")
     errors += setup_errors(root, env)
     if not errors:

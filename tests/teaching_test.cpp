@@ -237,10 +237,17 @@ TEST(TeachingPipeline, MessagesNameTheLabsTypes) {
         const std::string got = messageOf([&] { draw(Path::Teaching); });
         EXPECT_EQ(got, expected) << name;
         EXPECT_EQ(got.find("Teaching"), std::string::npos) << name << ": " << got;
-        if (name == "layout") EXPECT_NE(got.find("NeedsNormal"), std::string::npos) << got;
-        if (name == "overflow") EXPECT_NE(got.find("GsTooMany appended 1 vertices past its maxvertexcount of 4"),
-                                          std::string::npos) << got;
-        if (name == "targets") EXPECT_NE(got.find("pixel shader writes 1"), std::string::npos) << got;
+        // (Braces: an EXPECT is an if-else of its own.)
+        if (name == "layout") {
+            EXPECT_NE(got.find("NeedsNormal"), std::string::npos) << got;
+        }
+        if (name == "overflow") {
+            EXPECT_NE(got.find("GsTooMany appended 1 vertices past its maxvertexcount of 4"), std::string::npos)
+                << got;
+        }
+        if (name == "targets") {
+            EXPECT_NE(got.find("pixel shader writes 1"), std::string::npos) << got;
+        }
     }
 }
 

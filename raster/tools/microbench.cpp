@@ -495,6 +495,16 @@ int runMicrobench(std::vector<std::string> args) {
     benchmark::Initialize(&count, argv.data());
     if (benchmark::ReportUnrecognizedArguments(count, argv.data())) return kUsageExit;
     registerAll();
+#ifdef RASTER_MICROBENCH_TEST_BUILD
+    // A build with the tests compiles this program as a test program (RASTER_TEST_OPTIMIZATION), so
+    // that CI checks it compiles and runs without paying -O3 for it: such figures are not the library's.
+    benchmark::AddCustomContext("raster_microbench_build", "test build at " RASTER_MICROBENCH_TEST_BUILD);
+    std::fprintf(stderr,
+                 "raster microbench: WARNING: this raster-microbench was compiled at %s for the test suite; "
+                 "its times are not benchmark figures (configure without tests, e.g. .ci/build, or with "
+                 "-DRASTER_TEST_OPTIMIZATION=)\n",
+                 RASTER_MICROBENCH_TEST_BUILD);
+#endif
     benchmark::RunSpecifiedBenchmarks();
     benchmark::Shutdown();
     return 0;

@@ -4,8 +4,11 @@
 #  1. installs from the distribution's packages what building the grader needs (the part of .ci/setup's
 #     list that build/bin/raster needs; tests/gradescope_test.py checks that it stays a part of it);
 #  2. builds the grader, build/bin/raster and the lab runner library it links submissions with, in
-#     Release and for any x86-64 processor (not -march=native: the image may run on another processor
-#     than the one that built it; the images are the same bits either way, docs/GRADING.md);
+#     Release for x86-64-v3 processors (AVX2, FMA: every x86-64 server since about 2015), not
+#     -march=native: the image may run on another processor than the one that built it; the images
+#     are the same bits either way (docs/GRADING.md). The x86-64 baseline (RASTER_AUTOGRADER_MARCH=
+#     empty) runs anywhere but compiles the pipeline's vector code ten times slower; run_autograder
+#     refuses, naming the missing features, to grade on a processor the image was not built for;
 #  3. locks the solutions away from the submission, which runs as `nobody` under a root grader:
 #     solutions/ and the build's files that hold the solutions compiled (bin/, labs/) become root's
 #     alone, and it checks, as nobody, that the rest of what a submission's build reads is readable.
@@ -13,7 +16,8 @@
 #   AUTOGRADER_ROOT               the folder laid out like /autograder (default /autograder)
 #   RASTER_AUTOGRADER_PREBUILT    a build folder of raster (bin/raster, bin/grade_toolchain.json): use it
 #                                 as build/, install nothing and compile nothing (tests/gradescope_test.py)
-#   RASTER_AUTOGRADER_MARCH       -march= of the build (default: none, the compiler's x86-64 baseline)
+#   RASTER_AUTOGRADER_MARCH       -march= of the build (default x86-64-v3; set and empty: the compiler's
+#                                 x86-64 baseline)
 #   RASTER_AUTOGRADER_BUILD_JOBS  compiles at once (default: the processors there are)
 set -euo pipefail
 root=${AUTOGRADER_ROOT:-/autograder}
@@ -70,11 +74,13 @@ build_grader() {
   # call crosses an ABI boundary). The submission's compile takes these flags too (grade_toolchain.json),
   # and its log is what a student reads when it fails.
   local cxx_flags="-Wno-psabi"
-  [[ -z ${RASTER_AUTOGRADER_MARCH:-} ]] || cxx_flags+=" -march=$RASTER_AUTOGRADER_MARCH"
+  local march=${RASTER_AUTOGRADER_MARCH-x86-64-v3}
+  [[ -z $march ]] || cxx_flags+=" -march=$march"
   local jobs=${RASTER_AUTOGRADER_BUILD_JOBS:-$(nproc)}
   cmake -S "$source_dir" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DRASTER_NATIVE=OFF \
     -DRASTER_BUILD_TESTS=OFF -DRASTER_FUZZ_REPLAY=OFF "-DCMAKE_CXX_FLAGS=$cxx_flags"
   cmake --build "$build" --target raster_tool -j "$jobs"
+  echo "$march" > "$build/autograder_march.txt"  # run_autograder checks the processor against it
 }
 
 # What the grader runs as when it is root (raster/tools/grade/sandbox.hpp).
