@@ -72,7 +72,7 @@ void registerScene(SceneEntry entry) {
     for (char c : n)
         RASTER_REQUIRE((c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' || c == '-' || c == '@',
                        InvalidArgument, "scene name '" + n + "' may hold only a-z, 0-9, _, - and @");
-    RASTER_REQUIRE(n != "fire" && n != "particles" && n != "fog" && !registry().contains(n), InvalidArgument,
+    RASTER_REQUIRE(n != "fire" && n != "smoke" && n != "particles" && n != "fog" && !registry().contains(n), InvalidArgument,
                    "scene '" + n + "' is registered twice (two labs of one name?)");
     RASTER_REQUIRE(entry.make != nullptr, InvalidArgument, "scene '" + n + "' is registered without a factory");
     registry().emplace(n, std::move(entry));
@@ -90,13 +90,14 @@ std::string solutionSceneOf(std::string_view name) {
 }
 
 std::vector<std::string> sceneNames() {
-    std::vector<std::string> names = {"fire", "particles", "fog"};
+    std::vector<std::string> names = {"fire", "smoke", "particles", "fog"};
     for (const auto& [name, entry] : registry()) names.push_back(name);
     return names;
 }
 
 SceneCamera defaultCamera(std::string_view name) {
     if (name == "fire") return kFireCamera;
+    if (name == "smoke") return kSmokeCamera;
     if (name == "particles") return kParticlesCamera;
     if (name == "fog") return kFogCamera;
     if (const SceneEntry* entry = findRegisteredScene(name)) return entry->camera;
@@ -134,6 +135,7 @@ std::unique_ptr<Scene> makeScene(std::string_view name, const SceneOptions& opti
                        "particle count " + std::to_string(*options.count) + " is above 50000000");
     }
     if (name == "fire") return makeFireScene(options);
+    if (name == "smoke") return makeSmokeScene(options);
     if (name == "particles") return makeParticlesScene(options);
     if (name == "fog") {
         RASTER_REQUIRE(options.cubes <= 1024, InvalidArgument,

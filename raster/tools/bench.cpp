@@ -13,6 +13,7 @@
 
 #include <sys/resource.h>
 
+#include "bench_soft.hpp"
 #include "commands.hpp"
 #include "options.hpp"
 #include "particle_workload.hpp"
@@ -63,6 +64,8 @@ int runParticlesSim(const BenchArgs& args) {
 
 int runBench(const BenchArgs& args) {
     if (args.scene == kParticlesSim) return runParticlesSim(args);
+    if (args.scene == kSoftParticlesBench)
+        return runSoftParticlesBench(args.options, args.frames, args.threads, args.out);
     const SceneOptions& options = args.options;
     const uint32_t frames = args.frames, threads = args.threads;
     std::unique_ptr<Scene> scene = makeScene(args.scene, options);
@@ -117,7 +120,8 @@ Command addBench(CLI::App& app) {
     auto args = std::make_shared<BenchArgs>();
     std::vector<std::string> names = sceneNames();
     names.push_back(kParticlesSim);
-    command->add_option("scene", args->scene, "particles, fog, a lab (raster render --list), or particles-sim")
+    names.push_back(kSoftParticlesBench);
+    command->add_option("scene", args->scene, "particles, fog, a lab (raster render --list), particles-sim or soft-particles")
         ->check(CLI::IsMember(names))
         ->required();
     addSizeOptions(*command, args->options);
@@ -138,7 +142,10 @@ Command addBench(CLI::App& app) {
         "at --time and moves on by 1/60 s before each frame, inside the timing.\n"
         "particles-sim times --frames steps of the particle simulation alone (--count particles, default\n"
         "1000000, all alive; gravity, wind and drag, and curl noise with --turbulence), then prints\n"
-        "'raster particles-sim count=<N> turbulence=<0|1> ms_per_step_median=<t> steps=<K>'.");
+        "'raster particles-sim count=<N> turbulence=<0|1> ms_per_step_median=<t> steps=<K>'.\n"
+        "soft-particles renders the smoke at full resolution, at 1/2 and 1/4 with and without the edge\n"
+        "fix, for --count particles (default 1000 to 100000), and prints a table: the median frame time\n"
+        "and the errors against full resolution (docs/SOFT_PARTICLES.md); --out DIR writes its figures.");
     return {command, [args] { return runBench(*args); }};
 }
 

@@ -38,6 +38,7 @@ void listScenes() {
     for (const std::string& name : sceneNames()) {
         const SceneEntry* entry = findRegisteredScene(name);
         const char* title = name == "fire"        ? "the lecture's fire over the occluder, animated (a particle system)"
+                            : name == "smoke"     ? "grey smoke blended over, sorted and soft against a box (animated)"
                             : name == "particles" ? "the lecture's fire billboards (../shared/bench/SCENES.md)"
                             : name == "fog"     ? "cubes on a ground plane in fog (../shared/bench/SCENES.md)"
                             : entry             ? entry->title.c_str()
