@@ -143,8 +143,11 @@ struct OffscreenParticles {
     float fadeDistance = 0.25f;  // world units, > 0
 };
 
-// The `smoke` scene drawn this way: makeScene("smoke", o) is makeSmokeScene(o, {}). Error(
-// InvalidArgument) for a factor outside 1..16 or a fade distance that is not finite and > 0.
+// The `smoke` scene drawn this way: makeScene("smoke", o) is makeSmokeScene(o, {}). Its options:
+// count, the particle system's slots (unset: 3000; the emission rate keeps about 3/4 of them alive,
+// each puff fainter the more there are); time, the clock's start (unset: 8 s); seed; camera. Error(
+// InvalidArgument) for a factor outside 1..16 or a fade distance or edge step that is not finite and
+// > 0; the other options as makeScene checks them (makeSmokeScene does not).
 std::unique_ptr<Scene> makeSmokeScene(const SceneOptions& options, const OffscreenParticles& offscreen);
 
 }  // namespace raster
