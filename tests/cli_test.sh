@@ -126,7 +126,7 @@ bad --script Z view particles --script "N ] Z"
 bad --script "" view particles --script
 bad --screenshot-dir "''" view particles --screenshot-dir ""
 bad --screenshot-dir "" view particles --screenshot-dir
-bad --solution smoke view particles --solution smoke
+bad --solution smog view particles --solution smog
 bad --solution lab.jpg view particles --solution lab.jpg
 bad --solution "''" view particles --solution ""
 bad --solution "" view particles --solution
@@ -136,9 +136,9 @@ bad --screenshot-window maybe view particles --screenshot-window=maybe
 # The scene: missing or unknown.
 for command in bench trace view; do
   bad scene "" "$command"
-  bad scene smoke "$command" smoke
+  bad scene smog "$command" smog
 done
-bad scene smoke render fog smoke
+bad scene smog render fog smog
 # microbench hands its arguments to Google Benchmark, which refuses what it does not know.
 bad --bogus "" microbench --bogus
 # grade: the submission must be a folder; its numbers and choices are checked like the others'.
@@ -156,7 +156,7 @@ for command in "bench particles" "render fog" "trace particles --stats" "view pa
   # shellcheck disable=SC2086
   bad -x "" $command -x
 done
-bad smoke "" smoke
+bad smog "" smog
 says "raster --help lists the commands"
 bad --bogus "" --bogus
 run 2

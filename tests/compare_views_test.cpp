@@ -99,7 +99,7 @@ TEST(CompareViews, SolutionNamesReferenceASceneOrAPng) {
     const SolutionSource png = parseSolution("labs/one/Solution.PNG");
     EXPECT_EQ(png.kind, SolutionSource::Kind::Image);
     EXPECT_EQ(png.name, "labs/one/Solution.PNG");
-    for (const char* bad : {"smoke", "Reference", "solution.jpg", ".png"}) {
+    for (const char* bad : {"smog", "Reference", "solution.jpg", ".png"}) {
         try {
             parseSolution(bad);
             ADD_FAILURE() << bad << " was accepted";

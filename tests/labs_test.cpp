@@ -52,16 +52,17 @@ std::string labText(const std::string& path) {
 TEST(Labs, BillboardsIsRegisteredWithItsSolution) {
     const std::vector<std::string> names = sceneNames();
     EXPECT_EQ(names[0], "fire");
-    EXPECT_EQ(names[1], "sprites");
-    EXPECT_EQ(names[2], "forest");
-    EXPECT_EQ(names[3], "particles");
-    EXPECT_EQ(names[4], "fog");
+    EXPECT_EQ(names[1], "smoke");
+    EXPECT_EQ(names[2], "sprites");
+    EXPECT_EQ(names[3], "forest");
+    EXPECT_EQ(names[4], "particles");
+    EXPECT_EQ(names[5], "fog");
     EXPECT_NE(std::find(names.begin(), names.end(), "billboards"), names.end());
     EXPECT_NE(std::find(names.begin(), names.end(), "billboards@solution"), names.end());
     EXPECT_EQ(solutionSceneOf("billboards"), "billboards@solution");
     EXPECT_EQ(solutionSceneOf("billboards@solution"), "") << "a solution has no solution of its own";
     EXPECT_EQ(solutionSceneOf("particles"), "");
-    EXPECT_EQ(solutionSceneOf("smoke"), "");
+    EXPECT_EQ(solutionSceneOf("smog"), "");
     const SceneCamera lab = defaultCamera("billboards"), lecture = defaultCamera("particles");
     EXPECT_EQ(lab.eye, lecture.eye);
     EXPECT_EQ(lab.target, lecture.target);
@@ -315,7 +316,7 @@ TEST(SceneRegistry, RefusesBadEntriesAndServesGoodOnes) {
     EXPECT_EQ(image.rgba8()[0], 64);  // 0.25 * 255 = 63.75
     EXPECT_EQ(image.rgba8()[2], 191);
     expectInvalidArgument([&] { makeScene("registry-test", {.width = 0, .height = 2}); }, "0x2");
-    expectInvalidArgument([&] { makeScene("smoke", {}); }, "billboards");  // the error lists the labs
+    expectInvalidArgument([&] { makeScene("smog", {}); }, "billboards");  // the error lists the labs
 }
 
 }  // namespace

@@ -118,7 +118,7 @@ void expectInvalidArgument(const std::function<void()>& f, const std::string& pa
 }
 
 TEST(Scenes, MakeSceneRefusesBadArguments) {
-    expectInvalidArgument([] { makeScene("smoke", {}); }, "smoke");
+    expectInvalidArgument([] { makeScene("smog", {}); }, "smog");
     expectInvalidArgument([] { makeScene("", {}); }, "unknown scene");
     expectInvalidArgument([] { makeScene("particles", {.width = 0, .height = 720}); }, "0x720");
     expectInvalidArgument([] { makeScene("fog", {.width = 1280, .height = 0}); }, "1280x0");

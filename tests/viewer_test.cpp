@@ -356,7 +356,7 @@ void expectUsageError(std::vector<std::string> args, std::initializer_list<std::
 
 TEST(ViewerCommand, BadOptionsNameTheCulprit) {
     // All of these fail before SDL starts.
-    expectUsageError({"smoke", "--headless"}, {"scene: smoke not in", "particles"});
+    expectUsageError({"smog", "--headless"}, {"scene: smog not in", "particles"});
     expectUsageError({}, {"scene is required"});
     expectUsageError({"particles", "--size", "0x10"},
                      {"--size: W of '0x10'", "Value 0 not in range 1 to 16384"});
@@ -369,17 +369,17 @@ TEST(ViewerCommand, BadOptionsNameTheCulprit) {
     expectUsageError({"particles", "--headless", "--script", "N ] Z"}, {"--script", "'Z'"});
     expectUsageError({"fog", "--fog", "thick"}, {"--fog", "thick"});
     expectUsageError({"fog", "--screenshot-dir", ""}, {"--screenshot-dir"});
-    expectUsageError({"particles", "--headless", "--solution", "smoke"},
-                     {"unknown --solution 'smoke'", "reference", "particles, fog", ".png"});
+    expectUsageError({"particles", "--headless", "--solution", "smog"},
+                     {"unknown --solution 'smog'", "reference", "particles, fog", ".png"});
     expectUsageError({"particles", "--solution", "lab.jpg"}, {"'lab.jpg'"});
     expectUsageError({"particles", "--solution", ""}, {"--solution: takes"});
     expectUsageError({"particles", "--solution"}, {"--solution", "required"});
     // raster render --view opens the viewer without a command line: the same names are refused.
     ViewerOptions bad_scene, bad_solution;
-    bad_scene.scene = "smoke";
-    bad_solution.solution = "smoke";
-    expectInvalidArgument([&] { openViewer(bad_scene); }, {"unknown scene 'smoke'"});
-    expectInvalidArgument([&] { openViewer(bad_solution); }, {"unknown --solution 'smoke'"});
+    bad_scene.scene = "smog";
+    bad_solution.solution = "smog";
+    expectInvalidArgument([&] { openViewer(bad_scene); }, {"unknown scene 'smog'"});
+    expectInvalidArgument([&] { openViewer(bad_solution); }, {"unknown --solution 'smog'"});
 }
 
 TEST(SceneCamera, DefaultIsTheScenesOwnAndBadOnesAreRefused) {
@@ -395,7 +395,7 @@ TEST(SceneCamera, DefaultIsTheScenesOwnAndBadOnesAreRefused) {
         EXPECT_TRUE(a == b) << name;
         EXPECT_TRUE(da == db) << name;
     }
-    expectInvalidArgument([] { defaultCamera("smoke"); }, {"'smoke'"});
+    expectInvalidArgument([] { defaultCamera("smog"); }, {"'smog'"});
     SceneOptions bad{.width = 8, .height = 8};
     bad.camera = SceneCamera{{1, 2, 3}, {1, 2, 3}};
     expectInvalidArgument([&] { makeScene("particles", bad); }, {"camera eye (1.0", "target (1.0"});

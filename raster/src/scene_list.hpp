@@ -1,6 +1,6 @@
 // The built-in scenes, one translation unit each so that a build compiles them side by side: the
-// benchmark's (../shared/bench/SCENES.md) scene_particles.cpp and scene_fog.cpp, scene_fire.cpp and
-// scene_sprites.cpp (sprites, forest). Internal to the library;
+// benchmark's (../shared/bench/SCENES.md) scene_particles.cpp and scene_fog.cpp, scene_fire.cpp,
+// scene_smoke.cpp and scene_sprites.cpp (sprites, forest). Internal to the library;
 // users reach them through makeScene (raster/scenes.hpp).
 #pragma once
 
@@ -15,6 +15,8 @@ constexpr SceneCamera kParticlesCamera{{0, 0.3f, 4}, {0, 0, 0}};
 constexpr SceneCamera kFogCamera{{0, 1.5f, 6}, {0, 0.5f, -10}};
 // The fire's: SCENES.md's particles camera brought closer and lowered to the flames.
 constexpr SceneCamera kFireCamera{{0, -0.1f, 2.5f}, {0, -0.55f, 0}};
+// The smoke's: above the ground, looking down at the plume and the box it blows through.
+constexpr SceneCamera kSmokeCamera{{0.4f, 1.1f, 2.8f}, {0.0f, 0.55f, -0.4f}};
 
 // The sprites' (the sprites in the plane z = 0, 6 units ahead) and the forest's (outside the trees'
 // disc of radius 7.5, at eye height; the scene orbits it about the vertical).
@@ -33,6 +35,7 @@ inline SceneOptions occluderOnly(const SceneOptions& o, const SceneCamera& camer
 std::unique_ptr<Scene> makeParticlesScene(const SceneOptions& options);
 std::unique_ptr<Scene> makeFogScene(const SceneOptions& options);
 std::unique_ptr<Scene> makeFireScene(const SceneOptions& options);
+std::unique_ptr<Scene> makeSmokeScene(const SceneOptions& options);  // scene_smoke.cpp
 std::unique_ptr<Scene> makeSpritesScene(const SceneOptions& options);
 std::unique_ptr<Scene> makeForestScene(const SceneOptions& options);
 

@@ -80,6 +80,7 @@ const std::vector<BuiltinScene>& builtinScenes() {
     static const std::vector<BuiltinScene> scenes = [] {
         std::vector<BuiltinScene> list = {
             {"fire", kFireCamera, makeNamed<makeFireScene>},
+            {"smoke", kSmokeCamera, makeNamed<makeSmokeScene>},
             {"sprites", kSpritesCamera, makeNamed<makeSpritesScene>},
             {"forest", kForestCamera, makeNamed<makeForestScene>},
             {"particles", kParticlesCamera, makeNamed<makeParticlesScene>},

@@ -5,6 +5,8 @@
 // raster bench particles-sim: times K fixed steps of the particle simulation alone
 // (particle_workload.hpp) and prints the median step time. raster bench blend-figures times the blend
 // figures and compares them (bench_blend.cpp).
+#include <sys/resource.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -12,9 +14,8 @@
 #include <string>
 #include <vector>
 
-#include <sys/resource.h>
-
 #include "bench_blend.hpp"
+#include "bench_soft.hpp"
 #include "bench_timing.hpp"
 #include "commands.hpp"
 #include "options.hpp"
@@ -33,7 +34,7 @@ struct BenchArgs {
     uint32_t frames = 20, threads = 0;
     std::string out;
     bool reference = false, plain = false, noError = false;
-    bool turbulence = false;    // particles-sim: add curl-noise turbulence
+    bool turbulence = false;  // particles-sim: add curl-noise turbulence
 };
 
 // An animated scene's time per benchmark frame: one fixed step of the fire's simulation.
@@ -54,11 +55,12 @@ int runParticlesSim(const BenchArgs& args) {
     for (uint32_t k = 0; k < args.frames; ++k) {
         const auto t0 = std::chrono::steady_clock::now();
         system.step();
-        ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+        ms.push_back(
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     }
     std::sort(ms.begin(), ms.end());
-    std::printf("threads=%u alive=%u min_ms=%.3f max_ms=%.3f\n", pool.size(), system.aliveCount(),
-                ms.front(), ms.back());
+    std::printf("threads=%u alive=%u min_ms=%.3f max_ms=%.3f\n", pool.size(), system.aliveCount(), ms.front(),
+                ms.back());
     std::printf("raster particles-sim count=%u turbulence=%d ms_per_step_median=%.3f steps=%u\n", count,
                 int(args.turbulence), ms[ms.size() / 2], args.frames);
     return 0;
@@ -66,7 +68,10 @@ int runParticlesSim(const BenchArgs& args) {
 
 int runBench(const BenchArgs& args) {
     if (args.scene == kParticlesSim) return runParticlesSim(args);
-    if (args.scene == kBlendFigures) return runBlendFigures(args.options, args.frames, args.threads, args.out);
+    if (args.scene == kBlendFigures)
+        return runBlendFigures(args.options, args.frames, args.threads, args.out);
+    if (args.scene == kSoftParticlesBench)
+        return runSoftParticlesBench(args.options, args.frames, args.threads, args.out);
     const SceneOptions& options = args.options;
     const uint32_t frames = args.frames, threads = args.threads;
     std::unique_ptr<Scene> scene = makeScene(args.scene, options);
@@ -107,19 +112,24 @@ int runBench(const BenchArgs& args) {
 }  // namespace
 
 Command addBench(CLI::App& app) {
-    CLI::App* command = addCommand(app, "bench", "time a scene: a benchmark scene of SCENES.md, the fire, a lab");
+    CLI::App* command =
+        addCommand(app, "bench", "time a scene: a benchmark scene of SCENES.md, the fire, a lab");
     auto args = std::make_shared<BenchArgs>();
     std::vector<std::string> names = sceneNames();
     names.push_back(kParticlesSim);
+    names.push_back(kSoftParticlesBench);
     names.push_back(kBlendFigures);
-    command->add_option("scene", args->scene,
-                        "particles, fog, a lab (raster render --list), particles-sim or blend-figures")
+    command
+        ->add_option(
+            "scene", args->scene,
+            "particles, fog, a lab (raster render --list), particles-sim, blend-figures or soft-particles")
         ->check(CLI::IsMember(names))
         ->required();
     addSizeOptions(*command, args->options);
     addContentOptions(*command, args->options);
     addTimeOptions(*command, args->options);
-    command->add_option("--texture", args->options.texture, "particles, fire: a PNG instead of the generated fire");
+    command->add_option("--texture", args->options.texture,
+                        "particles, fire: a PNG instead of the generated fire");
     addWholeNumber(*command, "--frames", args->frames, 1, 100'000, "timed frames, after one warm-up frame");
     addThreadsOption(*command, args->threads);
     command->add_option("--out", args->out, "write the last frame to this PNG file");
@@ -137,7 +147,10 @@ Command addBench(CLI::App& app) {
         "'raster particles-sim count=<N> turbulence=<0|1> ms_per_step_median=<t> steps=<K>'.\n"
         "blend-figures times each blend-* scene (a line each, as above) and prints the differences of\n"
         "blend-wboit and blend-unsorted from blend-sorted; --out DIR writes the figures and the\n"
-        "differences' heat maps (<scene>-diff.png) into the folder DIR.");
+        "differences' heat maps (<scene>-diff.png) into the folder DIR.\n"
+        "soft-particles renders the smoke at full resolution, at 1/2 and 1/4 with and without the edge\n"
+        "fix, for --count particles (default 1000 to 100000), and prints a table: the median frame time\n"
+        "and the errors against full resolution (docs/SOFT_PARTICLES.md); --out DIR writes its figures.");
     return {command, [args] { return runBench(*args); }};
 }
 

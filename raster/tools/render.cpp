@@ -53,6 +53,7 @@ void listScenes() {
         const SceneEntry* entry = findRegisteredScene(name);
         const char* figure = blendFigureTitle(name);
         const char* title = name == "fire"        ? "the lecture's fire over the occluder, animated (a particle system)"
+                            : name == "smoke"     ? "grey smoke blended over, sorted and soft against a box (animated)"
                             : name == "sprites"
                                 ? "sprites three ways, rows top to bottom: (a) classic transforms, (b) own transform, "
                                   "(c) geometry shader, then turned to the eye; animated (try --fov 120)"
