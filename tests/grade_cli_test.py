@@ -47,7 +47,7 @@ CASES = {
     "gravity_up": ("particle-system", PARTICLES, "fail", ["input assembler: ", "with POSITION = ", SIMULATED]),
     "euler_step": ("particle-system", PARTICLES, "fail", ["input assembler: ", "with POSITION = ", SIMULATED]),
     "age_never_reset": ("particle-system", PARTICLES, "fail", ["input assembler: ", "with POSITION = ", SIMULATED]),
-    "colour_reversed": ("particle-system", PARTICLES, "fail", ["input assembler: ", "with COLOR = ", SIMULATED]),
+    "colour_reversed": ("particle-system", PARTICLES, "fail", ["input assembler: ", "with SIZE = ", SIMULATED]),
     "disc_crowded": ("particle-system", PARTICLES, "fail", ["input assembler: ", "with POSITION = ", SIMULATED]),
 }
 SCENES = {"billboards": BILLBOARDS, "input-layout": BILLBOARDS, "rasterizer": RASTERIZER,

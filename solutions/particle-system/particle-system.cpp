@@ -106,16 +106,17 @@ struct Look {
 // from 1 to 0 and it shrinks linearly to half its birth size.
 Look lookOverLife(float t) {
     const glm::vec3 hot(1.2f, 1.3f, 3.0f), orange(1.0f, 0.6f, 0.5f), ember(0.7f, 0.12f, 0.05f);
-    const glm::vec3 colour = t < 0.3f ? glm::mix(hot, orange, t / 0.3f) : glm::mix(orange, ember, (t - 0.3f) / 0.7f);
+    const glm::vec3 colour =
+        t < 0.3f ? glm::mix(hot, orange, t / 0.3f) : glm::mix(orange, ember, (t - 0.3f) / 0.7f);
     return {1.0f - 0.5f * t, colour, 1.0f - t};
 }
 
 // ---- The fountain: the lab's simulation loop, upload and drawing (no LAB place below) --------------
 
-constexpr double kStep = 1.0 / 60.0;          // seconds per simulation step (the clock's)
-constexpr float kStepF = float(kStep);        // the same step, as the particles' float
-constexpr double kDefaultTime = 3.0;          // seconds after the fountain is turned on
-constexpr uint32_t kDefaultCount = 4000;      // particle slots
+constexpr double kStep = 1.0 / 60.0;      // seconds per simulation step (the clock's)
+constexpr float kStepF = float(kStep);    // the same step, as the particles' float
+constexpr double kDefaultTime = 3.0;      // seconds after the fountain is turned on
+constexpr uint32_t kDefaultCount = 4000;  // particle slots
 
 const Emitter kFountain{{0.0f, -1.1f, 0.5f}, 0.1f, 0.4f, 5.5f, 6.5f, 1.2f, 2.0f, 0.03f, 0.05f};
 const Effectors kAir{{0.0f, -9.81f, 0.0f}, 3.0f, {2.0f, 0.0f, -0.4f}, 0.5f};
@@ -139,14 +140,17 @@ BirthRandom birthRandom(uint32_t seed, uint32_t particle, uint32_t birth) {
 // a time.
 class Fountain {
   public:
-    Fountain(uint32_t count, uint32_t seed) : seed_(seed), particles_(count), births_(count, 0), wait_(count) {
+    Fountain(uint32_t count, uint32_t seed)
+        : seed_(seed), particles_(count), births_(count, 0), wait_(count) {
         for (uint32_t i = 0; i < count; ++i) wait_[i] = kFountain.lifespanMax * random01(seed, i, 0, 15);
     }
 
     void step() {
         for (uint32_t i = 0; i < particles_.size(); ++i) {
             Particle& p = particles_[i];
-            const auto rebirth = [&](Particle& q) { emit(q, kFountain, birthRandom(seed_, i, ++births_[i])); };
+            const auto rebirth = [&](Particle& q) {
+                emit(q, kFountain, birthRandom(seed_, i, ++births_[i]));
+            };
             if (wait_[i] > 0.0f) {  // not yet born: count down, be born when the wait is over
                 wait_[i] -= kStepF;
                 if (wait_[i] <= 0.0f) emit(p, kFountain, birthRandom(seed_, i, 0));
@@ -199,7 +203,9 @@ struct SparkCorner {
 };
 
 struct VsSpark {
-    SparkVertex operator()(const SparkIn& in) const { return {glm::vec4(in.position, 1.0f), in.colour, in.size}; }
+    SparkVertex operator()(const SparkIn& in) const {
+        return {glm::vec4(in.position, 1.0f), in.colour, in.size};
+    }
 };
 
 // gsBillboard: the sprite opened in clip space, its half-size times the projection's scale.
@@ -224,7 +230,9 @@ struct PsSpark {
     glm::vec4 operator()(const SparkCorner& in) const { return texture->Sample(sampler, in.tex) * in.colour; }
 };
 
-// The side view: x to the right, y up, z ignored; one point per particle, added up.
+// The side view: x to the right, y up, z ignored; one soft dot per particle, added up. A dot, not a
+// one-pixel point, so that a position moved by a float's last bit (a correct answer written
+// otherwise) changes the picture by a fraction of a step, never by a whole point in another pixel.
 struct PointIn {
     glm::vec3 position;
     RASTER_INPUT_SIGNATURE(PointIn, RASTER_INPUT(position, "POSITION", 0))
@@ -238,6 +246,28 @@ struct VsSide {
     PointVertex operator()(const PointIn& in) const {
         const glm::vec2 xy = (glm::vec2(in.position) - kSideCentre) / kSideHalfWidth;
         return {glm::vec4(xy, 0.5f, 1.0f)};
+    }
+};
+struct DotCorner {
+    glm::vec4 position;  // clip space
+    glm::vec2 offset;    // from the dot's centre, in dot radii
+};
+// The dot: a square of kDotRadius pixels about the point, its brightness (1 − r²)², 0 at its rim.
+constexpr float kDotRadius = 1.5f;  // pixels
+struct GsDot {
+    float halfSize = 0.0f;  // kDotRadius in clip units: 2·kDotRadius / the panel's side in pixels
+    void operator()(const Point<PointVertex>& in, TriangleStream<DotCorner, 4>& stream) const {
+        const glm::vec4 c = in[0].position;
+        stream.Append({c + glm::vec4(halfSize, halfSize, 0, 0), {1, 1}});
+        stream.Append({c + glm::vec4(halfSize, -halfSize, 0, 0), {1, -1}});
+        stream.Append({c + glm::vec4(-halfSize, halfSize, 0, 0), {-1, 1}});
+        stream.Append({c + glm::vec4(-halfSize, -halfSize, 0, 0), {-1, -1}});
+    }
+};
+struct PsDot {
+    glm::vec4 operator()(const DotCorner& in) const {
+        const float fall = std::max(0.0f, 1.0f - glm::dot(in.offset, in.offset));
+        return {0.4f * fall * fall, 0.4f * fall * fall, 0.4f * fall * fall, 1.0f};
     }
 };
 struct VsClip {
@@ -299,8 +329,8 @@ class ParticleSystemLab final : public LabScene {
     }
 
     // Draws 2 and 3: the panel, a square of a third of the image's height in its lower right corner,
-    // dark blue, then every particle in it as one point of (0.25, 0.25, 0.25), added up: grey where one
-    // spark is, white where four or more are.
+    // dark blue, then every particle in it as a soft grey dot, (0.4, 0.4, 0.4) at its centre, added up:
+    // white where three or more sparks sit together.
     void drawSideView(Context& context, RenderTarget& color, uint32_t alive) {
         const float side = std::floor(float(color.height()) / 3.0f);
         context.setViewport({float(color.width()) - side, float(color.height()) - side, side, side, 0, 1});
@@ -314,7 +344,7 @@ class ParticleSystemLab final : public LabScene {
         context.setVertexBuffer(0, &vertices_);
         context.setPrimitiveTopology(Topology::PointList);
         context.setBlendState(BlendState::additive());
-        context.draw(VsSide{}, PsConstant{{0.25f, 0.25f, 0.25f, 1.0f}}, alive);
+        context.draw(VsSide{}, GsDot{2.0f * kDotRadius / side}, PsDot{}, alive);
     }
 
     static constexpr InputElementDesc kSideElements[] = {

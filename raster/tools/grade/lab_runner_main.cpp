@@ -91,8 +91,8 @@ RunnerArgs parseArgs(int argc, char** argv) {
         else if (option == "--time") {
             char* end = nullptr;
             const double t = std::strtod(value.c_str(), &end);
-            RASTER_REQUIRE(!value.empty() && *end == 0 && t >= 0.0 && t <= raster::kMaxStartTime, InvalidArgument,
-                           option + ": '" + value + "' is not a time in [0, 600] seconds");
+            RASTER_REQUIRE(!value.empty() && *end == 0 && t >= 0.0 && t <= raster::kMaxStartTime,
+                           InvalidArgument, option + ": '" + value + "' is not a time in [0, 600] seconds");
             a.options.time = t;
         } else if (option == "--threads")
             a.threads = whole(option, value);
