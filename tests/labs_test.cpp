@@ -286,6 +286,103 @@ TEST(Labs, InputLayoutMismatchesAreNamedNotCrashed) {
                                  "it has: POSITION0, LIFETIME0, AGE0, COLOR0"});
 }
 
+// ---- particle-system: an animated lab (labs/particle-system/README.md) ------------------------------
+
+// The side view's panel: the lower right square of a third of the image's height; its pixels lit above
+// the panel's dark blue background (5, 8, 20) by more than a sixth of one dot's peak (102, 102, 102).
+size_t litPanelPixels(const RenderTarget& image, uint32_t* top_row = nullptr) {
+    const uint32_t side = image.height() / 3;
+    size_t lit = 0;
+    uint32_t top = image.height();
+    for (uint32_t y = image.height() - side; y < image.height(); ++y)
+        for (uint32_t x = image.width() - side; x < image.width(); ++x)
+            if (image.rgba8()[4 * (size_t(y) * image.width() + x)] > 40) ++lit, top = std::min(top, y);
+    if (top_row) *top_row = top;
+    return lit;
+}
+
+TEST(Labs, ParticleSystemIsAnimatedAndRegisteredWithItsSolution) {
+    const std::vector<std::string> names = sceneNames();
+    EXPECT_NE(std::find(names.begin(), names.end(), "particle-system"), names.end());
+    EXPECT_EQ(solutionSceneOf("particle-system"), "particle-system@solution");
+    for (const char* name : {"particle-system", "particle-system@solution"}) {
+        const auto scene = makeScene(name, {.width = 8, .height = 8, .count = 10});
+        EXPECT_EQ(scene->name(), name);
+        EXPECT_TRUE(scene->animated()) << name << ": the viewer plays it";
+        EXPECT_EQ(scene->time(), 3.0) << name << ": the default start";
+        scene->advance(0.25);
+        EXPECT_EQ(scene->time(), 3.25);
+        expectInvalidArgument([&] { scene->advance(-1.0); }, "advance");
+        EXPECT_EQ(makeScene(name, {.width = 8, .height = 8, .count = 10, .time = 1.5})->time(), 1.5);
+    }
+}
+
+// Graded by image at fixed seeds and times: the same bits at any thread count, and another seed is
+// another fountain.
+TEST(Labs, ParticleSystemSolutionIsBitIdenticalAt1_2And8Threads) {
+    const SceneOptions o{.width = 480, .height = 270, .count = 6000, .time = 2.5, .seed = 5};
+    const RenderTarget one = renderScene("particle-system@solution", o, 1);
+    EXPECT_EQ(differingPixels(one, renderScene("particle-system@solution", o, 2)), 0u);
+    EXPECT_EQ(differingPixels(one, renderScene("particle-system@solution", o, 8)), 0u);
+    SceneOptions other = o;
+    other.seed = 6;
+    EXPECT_GT(differingPixels(one, renderScene("particle-system@solution", other)), 5000u)
+        << "the seed must change the simulation";
+}
+
+// The clock's rules (raster/scenes.hpp): a frame is a function of the start plus the advances, in
+// whole steps of 1/60 s; two advances of 1/120 s are one step; a step moves the sparks.
+TEST(Labs, ParticleSystemFrameIsAFunctionOfTheClockAlone) {
+    const SceneOptions start{.width = 320, .height = 180, .count = 2000, .time = 2.0, .seed = 1};
+    const auto frame = [](Scene& scene) {
+        Context context({1});
+        RenderTarget color(320, 180);
+        DepthTarget depth(320, 180);
+        scene.render(context, color, depth);
+        return color;
+    };
+    SceneOptions later = start;
+    later.time = 3.0;
+    const auto advanced = makeScene("particle-system@solution", start);
+    advanced->advance(0.5);
+    advanced->advance(0.5);
+    EXPECT_EQ(differingPixels(frame(*advanced), frame(*makeScene("particle-system@solution", later))), 0u);
+    const auto halves = makeScene("particle-system@solution", start),
+               whole = makeScene("particle-system@solution", start);
+    const RenderTarget before = frame(*whole);
+    halves->advance(1.0 / 120.0);
+    EXPECT_EQ(differingPixels(frame(*halves), before), 0u) << "half a step is not run yet";
+    halves->advance(1.0 / 120.0);
+    whole->advance(1.0 / 60.0);
+    const RenderTarget after = frame(*whole);
+    EXPECT_EQ(differingPixels(frame(*halves), after), 0u);
+    EXPECT_GT(differingPixels(after, before), 500u) << "one step must move the sparks";
+}
+
+// The side view shows the simulation's state: the solution's sparks rise far above the emitter (the
+// fountain's crown near the panel's top), while as handed out every spark sits at the emitter, still
+// (the frames at 3 s and 4 s are the same), and lights one dot of the panel (3 by 3 pixels at most). Skipped
+// once a student has started on the file: this checks the hand-out.
+TEST(Labs, ParticleSystemAsHandedOutFreezesTheSparksAtTheEmitter) {
+    const SceneOptions o{.width = 480, .height = 270, .count = 3000};
+    uint32_t top = 0;
+    const RenderTarget solution = renderScene("particle-system@solution", o);
+    EXPECT_GT(litPanelPixels(solution, &top), 1500u);
+    EXPECT_LT(top, 270u - 90u * 3 / 4) << "the fountain's crown is in the panel's top quarter";
+    const std::string text = labText("labs/particle-system/particle-system.cpp");
+    for (const char* start : {"p.position = e.centre;", "(void)p, (void)e, (void)dt;", "(void)rebirth;",
+                              "return {1.0f, glm::vec3(1.0f), 1.0f};"})
+        if (text.find(start) == std::string::npos)
+            GTEST_SKIP() << "the lab has been edited (no '" << start << "')";
+    const RenderTarget lab = renderScene("particle-system", o);
+    EXPECT_LE(litPanelPixels(lab), 9u) << "every spark at the emitter: one dot in the side view";
+    SceneOptions later = o;
+    later.time = 4.0;
+    EXPECT_EQ(differingPixels(lab, renderScene("particle-system", later)), 0u) << "nothing moves";
+    // 21 236 of 129 600 pixels (2026-12-04): the fountain's glow and the side view's dots.
+    EXPECT_GT(differingPixels(lab, solution), 10000u) << "the picture a student starts from is visibly wrong";
+}
+
 TEST(SceneRegistry, RefusesBadEntriesAndServesGoodOnes) {
     const auto make = [](const std::string& name, const SceneOptions& o) -> std::unique_ptr<Scene> {
         struct Empty final : LabScene {

@@ -115,7 +115,11 @@ std::string inputHint(const TraceDraw& theirs, const TraceVertex& b, const Trace
                 "element's Format too narrow for the field?)",
                 k, k == 1 ? "" : "s");
     }
-    return ": check the element's Format (the field's type) and AlignedByteOffset (offsetof of the field)";
+    // Neither: the buffer itself may hold another value (a lab that computes its vertices, such as a
+    // particle simulation's) or the element may read it otherwise.
+    return ": the vertex buffer holds another value (check what your code computes and uploads into it) or "
+           "the element reads it otherwise (check its Format, the field's type, and AlignedByteOffset, "
+           "offsetof of the field)";
 }
 
 // The vertex shader's input, field by field by semantic: what the input assembler handed it.

@@ -15,7 +15,7 @@
 // difference found is the diagnosis:
 //   1. the draw itself: a draw the other frame lacks; shaders or topology (DiagnosisStage::Draw)
 //   2. geometry of that input primitive: the vertex shader's inputs as the input assembler fetched them,
-//      field by field by semantic (InputAssembler: a wrong offset or format in the input layout), then
+//      field by field by semantic (InputAssembler: a wrong offset or format in the input layout, or other data in the buffer), then
 //      its outputs given the same inputs (VertexShader; positions also in pixels); the geometry shader's
 //      vertex count (as triangles of its strips) and output positions, else the positions after setup
 //      (GeometryShader, VertexShader); the primitives set up from it (Rasterizer: a fragment one side

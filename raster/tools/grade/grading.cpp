@@ -47,12 +47,19 @@ struct FieldReader {
     }
 
     SceneOptions options(const Json& j) const {
-        onlyKnown(j, {"width", "height", "count", "seed", "cubes", "fog", "camera"});
+        onlyKnown(j, {"width", "height", "count", "seed", "cubes", "fog", "camera", "time"});
         SceneOptions o;
         if (j.contains("width")) o.width = whole(j["width"], "width", 1, 8192);
         if (j.contains("height")) o.height = whole(j["height"], "height", 1, 8192);
         if (j.contains("count")) o.count = whole(j["count"], "count", 0, 50'000'000);
         if (j.contains("seed")) o.seed = whole(j["seed"], "seed", 0, UINT32_MAX);
+        if (j.contains("time")) {
+            if (!j["time"].is_number() || !(j["time"].get<double>() >= 0.0) ||
+                !(j["time"].get<double>() <= kMaxStartTime))
+                fail("\"time\" must be a number of seconds in [0, " + std::to_string(int(kMaxStartTime)) +
+                     "], not " + j["time"].dump());
+            o.time = j["time"].get<double>();
+        }
         if (j.contains("cubes")) o.cubes = whole(j["cubes"], "cubes", 0, 1024);
         if (j.contains("fog")) {
             const std::string fog = text(j["fog"], "fog");
@@ -153,6 +160,11 @@ std::vector<std::string> runnerOptionArgs(const SceneOptions& o) {
                                      "--cubes",  std::to_string(o.cubes),
                                      "--fog",    o.heightFog ? "height" : "constant"};
     if (o.count) args.insert(args.end(), {"--count", std::to_string(*o.count)});
+    if (o.time) {
+        char time[64];
+        std::snprintf(time, sizeof time, "%.17g", *o.time);  // every bit of the double
+        args.insert(args.end(), {"--time", time});
+    }
     if (o.camera) {
         char camera[256];
         std::snprintf(camera, sizeof camera, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g", o.camera->eye.x,

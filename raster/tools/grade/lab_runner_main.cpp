@@ -4,7 +4,8 @@
 // and writes the trace as JSON too (grade/trace_json.hpp), for the grader's diagnosis.
 //
 //   lab_runner --scene billboards --out scene.png --width 320 --height 180 --count 500
-//              [--camera EX,EY,EZ,TX,TY,TZ] [--seed N] [--cubes N] [--fog constant|height] [--threads N]
+//              [--camera EX,EY,EZ,TX,TY,TZ] [--seed N] [--cubes N] [--fog constant|height] [--time T]
+//              [--threads N]
 //              [--path fast|plain|reference] [--pixel X,Y --history FILE]
 //
 // Exit status 0 when the image was written; 1 with a message on stderr for anything else (an option it
@@ -87,7 +88,13 @@ RunnerArgs parseArgs(int argc, char** argv) {
             a.options.seed = whole(option, value);
         else if (option == "--cubes")
             a.options.cubes = whole(option, value);
-        else if (option == "--threads")
+        else if (option == "--time") {
+            char* end = nullptr;
+            const double t = std::strtod(value.c_str(), &end);
+            RASTER_REQUIRE(!value.empty() && *end == 0 && t >= 0.0 && t <= raster::kMaxStartTime,
+                           InvalidArgument, option + ": '" + value + "' is not a time in [0, 600] seconds");
+            a.options.time = t;
+        } else if (option == "--threads")
             a.threads = whole(option, value);
         else if (option == "--fog")
             a.options.heightFog = value == "height";
