@@ -16,7 +16,7 @@ import subprocess
 import sys
 import time
 
-PARTICLES = {"small_start", "close_few"}  # tests/grader/root's billboards scenes that draw particles
+PARTICLES = {"small_start", "close_few"}  # tests/grader/root's billboards (input-layout, blending) scenes that draw particles
 BILLBOARDS = {"small_start", "no_particles", "close_few"}
 RASTERIZER = {"small_start", "turned", "tiny_image"}
 # The rasterizer scenes where a pixel centre lies exactly on an edge (all but `turned`, whose camera
@@ -41,8 +41,13 @@ CASES = {
     "colour_too_narrow": ("input-layout", PARTICLES, "fail", ["input assembler: ", "with COLOR = ", "the first 3 components and the defaults (0, 0, 0, 1) after them", "Format too narrow"]),
     "library_layout": ("input-layout", PARTICLES, "error", ["failed: ", "element COLOR0 (feeding `colour`) at byte 36", "stride of 48 bytes"]),
     "untransformed": ("input-layout", PARTICLES, "fail", ["vertex shader: ", "from the same input: its SV_Position is"]),
+    "blend_alternative": ("blending", set(), "pass", []),
+    "blend_depth_write": ("blending", PARTICLES, "fail", ["depth test: ", "is depth write on?", "your depth write is on where the solution's is off"]),
+    "over_dest_one": ("blending", PARTICLES, "fail", ["blend: ", "your destination factor is Blend::One where the solution's is Blend::InvSrcAlpha"]),
+    "front_to_back": ("blending", PARTICLES, "fail", ["blend: ", "fragments in another order: yours from depth", "(near to far), the solution's", "(far to near)"]),
+    "slide_comparator": ("blending", PARTICLES, "error", ["failed: ", "drawnBefore is not a strict weak ordering", "ties must be transitive"]),
 }
-SCENES = {"billboards": BILLBOARDS, "input-layout": BILLBOARDS, "rasterizer": RASTERIZER}
+SCENES = {"billboards": BILLBOARDS, "input-layout": BILLBOARDS, "blending": BILLBOARDS, "rasterizer": RASTERIZER}
 
 
 def grade(raster, submission, out, extra, cwd):
