@@ -16,7 +16,7 @@ import subprocess
 import sys
 import time
 
-PARTICLES = {"small_start", "close_few"}  # tests/grader/root's billboards scenes that draw particles
+PARTICLES = {"small_start", "close_few"}  # tests/grader/root's billboards (input-layout, blending) scenes that draw particles
 BILLBOARDS = {"small_start", "no_particles", "close_few"}
 RASTERIZER = {"small_start", "turned", "tiny_image"}
 # The rasterizer scenes where a pixel centre lies exactly on an edge (all but `turned`, whose camera
@@ -49,9 +49,14 @@ CASES = {
     "age_never_reset": ("particle-system", PARTICLES, "fail", ["input assembler: ", "with POSITION = ", SIMULATED]),
     "colour_reversed": ("particle-system", PARTICLES, "fail", ["input assembler: ", "with SIZE = ", SIMULATED]),
     "disc_crowded": ("particle-system", PARTICLES, "fail", ["input assembler: ", "with POSITION = ", SIMULATED]),
+    "blend_alternative": ("blending", set(), "pass", []),
+    "blend_depth_write": ("blending", PARTICLES, "fail", ["depth test: ", "is depth write on?", "your depth write is on where the solution's is off"]),
+    "over_dest_one": ("blending", PARTICLES, "fail", ["blend: ", "your destination factor is Blend::One where the solution's is Blend::InvSrcAlpha"]),
+    "front_to_back": ("blending", PARTICLES, "fail", ["blend: ", "fragments in another order: yours from depth", "(near to far), the solution's", "(far to near)"]),
+    "slide_comparator": ("blending", PARTICLES, "error", ["failed: ", "drawnBefore is not a strict weak ordering", "ties must be transitive"]),
 }
 SCENES = {"billboards": BILLBOARDS, "input-layout": BILLBOARDS, "rasterizer": RASTERIZER,
-          "particle-system": BILLBOARDS}
+          "particle-system": BILLBOARDS, "blending": BILLBOARDS}
 
 
 def grade(raster, submission, out, extra, cwd):

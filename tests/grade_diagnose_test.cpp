@@ -98,6 +98,27 @@ TEST(GradeDiagnose, BlendFactorIsNamedWithBothValues) {
         << d.headline;
 }
 
+// The same two fragments of one draw in the other order (an index buffer sorted front to back): named
+// as the order, with both directions, not as the geometry of the primitive that now comes first.
+TEST(GradeDiagnose, DrawOrderIsNamedWithBothDirections) {
+    const glm::vec4 near{1, 0.75f, 0.1f, 0.75f}, far{0.1f, 0.3f, 1, 0.75f};
+    Frame yours(BlendState::alphaBlend(), DepthStencilState::readOnly()),
+        theirs(BlendState::alphaBlend(), DepthStencilState::readOnly());
+    for (Frame* f : {&yours, &theirs})
+        f->add(0, 0, 0.6f, 1.0f, 0.6f, FragmentFate::Written, kGrey, kBlack, kGrey);
+    theirs.add(1, 3, 0.5f, 0.6f, 0.6f, FragmentFate::Written, far, kGrey, kGrey);
+    theirs.add(1, 4, 0.4f, 0.6f, 0.6f, FragmentFate::Written, near, kGrey, kGrey);
+    yours.add(1, 3, 0.4f, 0.6f, 0.6f, FragmentFate::Written, near, kGrey, kGrey);
+    yours.add(1, 4, 0.5f, 0.6f, 0.6f, FragmentFate::Written, far, kGrey, kGrey);
+    const grade::Diagnosis d = grade::diagnosePixel(yours.done(), theirs.done(), kX, kY);
+    EXPECT_EQ(d.stage, DiagnosisStage::Blend);
+    EXPECT_NE(d.headline.find(
+                  "draw 1: your draw 1 brings the solution's 2 fragments in another order: yours "
+                  "from depth 0.4 to 0.5 (near to far), the solution's from depth 0.5 to 0.4 (far to near)"),
+              std::string::npos)
+        << d.headline;
+}
+
 TEST(GradeDiagnose, DepthWriteLeftOnIsNamedWithTheDepths) {
     Frame yours(additive(), DepthStencilState{}), theirs = solution();
     yours.add(0, 0, 0.6f, 1.0f, 0.6f, FragmentFate::Written, kGrey, kBlack, kGrey);

@@ -6,12 +6,14 @@
 #include <cmath>
 #include <cstddef>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "raster/lab.hpp"
+#include "raster/strict_weak_order.hpp"
 #include "lecture_particle.hpp"
 
 namespace raster {
@@ -381,6 +383,87 @@ TEST(Labs, ParticleSystemAsHandedOutFreezesTheSparksAtTheEmitter) {
     EXPECT_EQ(differingPixels(lab, renderScene("particle-system", later)), 0u) << "nothing moves";
     // 21 236 of 129 600 pixels (2026-12-04): the fountain's glow and the side view's dots.
     EXPECT_GT(differingPixels(lab, solution), 10000u) << "the picture a student starts from is visibly wrong";
+
+// ---- blending: the lecture's five blend and depth figures, and the comparator ----
+
+TEST(Labs, BlendingIsRegisteredWithItsSolution) {
+    const std::vector<std::string> names = sceneNames();
+    EXPECT_NE(std::find(names.begin(), names.end(), "blending"), names.end());
+    EXPECT_EQ(solutionSceneOf("blending"), "blending@solution");
+    EXPECT_EQ(defaultCamera("blending").eye, defaultCamera("blend-sorted").eye);
+}
+
+// The pixels of a w × h panel at (x0, y0), RGBA8, row after row.
+std::vector<uint8_t> panelPixels(const RenderTarget& t, uint32_t x0, uint32_t y0, uint32_t w, uint32_t h) {
+    std::vector<uint8_t> out;
+    for (uint32_t y = y0; y < y0 + h; ++y)
+        out.insert(out.end(), t.rgba8() + 4 * (size_t(y) * t.width() + x0),
+                   t.rgba8() + 4 * (size_t(y) * t.width() + x0 + w));
+    return out;
+}
+
+size_t differingPixels(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
+    size_t n = 0;
+    for (size_t i = 0; i + 3 < a.size(); i += 4) n += !std::equal(&a[i], &a[i] + 4, &b[i]);
+    return n;
+}
+
+// The panels (width / 3 × height / 2 each): top row additive with depth write, no depth test, depth
+// test without write; bottom row, centred, "over" unsorted and sorted. Each figure differs from the
+// one it teaches against: no depth test and depth write off from depth write on (particles over the
+// occluder; no squares cut out), sorted from unsorted; and the image is the same bits at 1 and 8 threads.
+TEST(Labs, BlendingSolutionDrawsFiveDistinctFiguresAtAnyThreadCount) {
+    const SceneOptions o{.width = 480, .height = 270, .count = 200};
+    const RenderTarget image = renderScene("blending@solution", o, 1);
+    EXPECT_EQ(differingPixels(image, renderScene("blending@solution", o, 8)), 0u);
+    const uint32_t w = 160, h = 135;
+    const std::vector<uint8_t> depth_write = panelPixels(image, 0, 0, w, h);
+    EXPECT_GT(differingPixels(depth_write, panelPixels(image, w, 0, w, h)), w * h / 20);
+    EXPECT_GT(differingPixels(depth_write, panelPixels(image, 2 * w, 0, w, h)), w * h / 20);
+    const std::vector<uint8_t> unsorted = panelPixels(image, w / 2, h, w, h);
+    SceneOptions none = o;
+    none.count = 0;
+    EXPECT_GT(differingPixels(unsorted, panelPixels(renderScene("blending@solution", none), w / 2, h, w, h)),
+              w * h / 10)
+        << "the unsorted panel draws particles";
+    EXPECT_GT(differingPixels(unsorted, panelPixels(image, w / 2 + w, h, w, h)), w * h / 100)
+        << "sorting must change the order";
+}
+
+// As handed out: every state D3D11's default (opaque squares), visibly not the solution. Skipped
+// once a student has started on the file.
+TEST(Labs, BlendingAsHandedOutDiffersFromTheSolution) {
+    const std::string text = labText("labs/blending/blending.cpp");
+    for (const char* start : {"BlendState additiveBlend() {\n    BlendState blend;\n    return blend;",
+                              "    (void)position, (void)eye, (void)ahead;\n    return 0.0f;"})
+        if (text.find(start) == std::string::npos)
+            GTEST_SKIP() << "the lab has been edited (no '" << start << "')";
+    const SceneOptions o{.width = 480, .height = 270, .count = 200};
+    EXPECT_GT(differingPixels(renderScene("blending", o), renderScene("blending@solution", o)),
+              size_t(480 * 270 / 10));
+}
+
+TEST(StrictWeakOrder, FindsTheSlidesIntransitiveTiesAndAcceptsThePlainKey) {
+    const std::vector<float> depths = {0.016f, 0.0f, 0.008f};
+    const auto slide = [](float a, float b) { return a > b + 0.01f; };
+    const auto v = findStrictWeakOrderViolation(std::span<const float>(depths), slide);
+    ASSERT_TRUE(v.has_value());
+    EXPECT_EQ(v->rule, OrderRule::TransitiveTies);
+    EXPECT_TRUE(slide(depths[v->a], depths[v->c]));
+    const std::string text =
+        orderViolationText(*v, "less", [&](size_t i) { return std::to_string(depths[i]); });
+    EXPECT_NE(text.find("ties must be transitive"), std::string::npos) << text;
+    EXPECT_FALSE(findStrictWeakOrderViolation(std::span<const float>(depths), std::greater<float>()));
+    const std::vector<float> ties = {1, 1, 2, 2, 0, 1};
+    EXPECT_FALSE(findStrictWeakOrderViolation(std::span<const float>(ties), std::less<float>()));
+    EXPECT_EQ(findStrictWeakOrderViolation(std::span<const float>(ties), std::greater_equal<float>())->rule,
+              OrderRule::Irreflexivity);
+    const auto cyclic = [](float a, float b) { return int(b) == (int(a) + 1) % 3; };  // 0 < 1 < 2 < 0
+    const std::vector<float> rock = {0, 1, 2};
+    EXPECT_EQ(findStrictWeakOrderViolation(std::span<const float>(rock), cyclic)->rule,
+              OrderRule::Transitivity);
+    const auto both = [](float a, float b) { return a != b; };
+    EXPECT_EQ(findStrictWeakOrderViolation(std::span<const float>(rock), both)->rule, OrderRule::Asymmetry);
 }
 
 TEST(SceneRegistry, RefusesBadEntriesAndServesGoodOnes) {

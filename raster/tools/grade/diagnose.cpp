@@ -1,6 +1,7 @@
 #include "grade/diagnose.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -469,6 +470,50 @@ std::map<Key, std::vector<TraceFragment>> byKey(const std::vector<TraceFragment>
     return out;
 }
 
+// ---- The draw order: the same fragments of one draw, in another order ----
+
+// A draw whose fragments at the pixel are the solution's (depth and shader output, as a multiset) in
+// another sequence: the primitives were drawn in another order (an index buffer sorted otherwise).
+// Compared primitive by primitive these would look like wrong geometry, so this comes first.
+std::optional<std::pair<uint32_t, Found>> orderDifference(const std::vector<TraceFragment>& yours,
+                                                          const std::vector<TraceFragment>& theirs) {
+    std::map<uint32_t, std::pair<std::vector<const TraceFragment*>, std::vector<const TraceFragment*>>> draws;
+    for (const TraceFragment& f : yours) draws[f.draw].first.push_back(&f);
+    for (const TraceFragment& f : theirs) draws[f.draw].second.push_back(&f);
+    const auto sameFragment = [](const TraceFragment* a, const TraceFragment* b) {
+        return same(a->depth, b->depth) && same(a->shaderOutput, b->shaderOutput);
+    };
+    const auto before = [](const TraceFragment* a, const TraceFragment* b) {
+        const auto key = [](const TraceFragment* f) {
+            return std::array<float, 5>{f->depth, f->shaderOutput.r, f->shaderOutput.g, f->shaderOutput.b,
+                                        f->shaderOutput.a};
+        };
+        return key(a) < key(b);  // NaN outputs compare false both ways: tied, and then compared by same()
+    };
+    for (auto& [draw, pair] : draws) {
+        auto& [a, b] = pair;
+        if (a.size() != b.size() || a.size() < 2 || std::equal(a.begin(), a.end(), b.begin(), sameFragment))
+            continue;
+        std::vector<const TraceFragment*> x = a, y = b;
+        std::stable_sort(x.begin(), x.end(), before);
+        std::stable_sort(y.begin(), y.end(), before);
+        if (!std::equal(x.begin(), x.end(), y.begin(), sameFragment)) continue;
+        const auto direction = [](const std::vector<const TraceFragment*>& v) {
+            return fmt("from depth %.4g to %.4g (%s)", v.front()->depth, v.back()->depth,
+                       v.front()->depth > v.back()->depth   ? "far to near"
+                       : v.front()->depth < v.back()->depth ? "near to far"
+                                                            : "first and last at one depth");
+        };
+        return std::pair{
+            draw, Found{DiagnosisStage::Blend,
+                        fmt("your draw %u brings the solution's %zu fragments in another order: yours ", draw,
+                            a.size()) +
+                            direction(a) + ", the solution's " + direction(b) +
+                            ": is the sort key or the comparator wrong (back to front for \"over\")?"}};
+    }
+    return std::nullopt;
+}
+
 // The first difference at one (draw, primitive): geometry, then coverage, then fragment by fragment.
 std::optional<Found> keyDifference(const Trace& yours, const Trace& theirs, Key key,
                                    const std::vector<TraceFragment>& a, const std::vector<TraceFragment>& b) {
@@ -569,6 +614,13 @@ Diagnosis diagnosePixel(const Trace& submission, const Trace& solution, int32_t 
     std::sort(keys.begin(), keys.end());
     keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
     static const std::vector<TraceFragment> kNone;
+    if (const auto order = orderDifference(submission.pixelHistory(x, y), solution.pixelHistory(x, y))) {
+        d.stage = order->second.stage;
+        d.headline = fmt("pixel (%d, %d), draw %u: ", x, y, order->first) + order->second.text;
+        for (const std::string& line : drawStateDifferences(submission, solution, order->first))
+            d.details.push_back(line);
+        keys.clear();
+    }
     for (const Key& key : keys) {
         const auto a = yours.find(key), b = theirs.find(key);
         const std::optional<Found> found =
