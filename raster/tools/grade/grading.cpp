@@ -47,12 +47,19 @@ struct FieldReader {
     }
 
     SceneOptions options(const Json& j) const {
-        onlyKnown(j, {"width", "height", "count", "seed", "cubes", "fog", "camera"});
+        onlyKnown(j, {"width", "height", "count", "seed", "cubes", "fog", "camera", "time", "fov"});
         SceneOptions o;
         if (j.contains("width")) o.width = whole(j["width"], "width", 1, 8192);
         if (j.contains("height")) o.height = whole(j["height"], "height", 1, 8192);
         if (j.contains("count")) o.count = whole(j["count"], "count", 0, 50'000'000);
         if (j.contains("seed")) o.seed = whole(j["seed"], "seed", 0, UINT32_MAX);
+        if (j.contains("time")) {
+            if (!j["time"].is_number() || !(j["time"].get<double>() >= 0.0) ||
+                !(j["time"].get<double>() <= kMaxStartTime))
+                fail("\"time\" must be a number of seconds in [0, " + std::to_string(int(kMaxStartTime)) +
+                     "], not " + j["time"].dump());
+            o.time = j["time"].get<double>();
+        }
         if (j.contains("cubes")) o.cubes = whole(j["cubes"], "cubes", 0, 1024);
         if (j.contains("fog")) {
             const std::string fog = text(j["fog"], "fog");
@@ -65,6 +72,12 @@ struct FieldReader {
             onlyKnown(c, {"eye", "target"});
             if (!c.contains("eye") || !c.contains("target")) fail("\"camera\" needs \"eye\" and \"target\"");
             o.camera = SceneCamera{point(c["eye"], "eye"), point(c["target"], "target")};
+        }
+        if (j.contains("fov")) {  // the vertical field of view, degrees (SceneOptions::fovDegrees)
+            if (!j["fov"].is_number() || !(j["fov"].get<double>() > 0.0) ||
+                !(j["fov"].get<double>() <= 179.0))
+                fail("\"fov\" must be a number of degrees in (0, 179], not " + j["fov"].dump());
+            o.fovDegrees = j["fov"].get<float>();
         }
         return o;
     }
@@ -153,12 +166,22 @@ std::vector<std::string> runnerOptionArgs(const SceneOptions& o) {
                                      "--cubes",  std::to_string(o.cubes),
                                      "--fog",    o.heightFog ? "height" : "constant"};
     if (o.count) args.insert(args.end(), {"--count", std::to_string(*o.count)});
+    if (o.time) {
+        char time[64];
+        std::snprintf(time, sizeof time, "%.17g", *o.time);  // every bit of the double
+        args.insert(args.end(), {"--time", time});
+    }
     if (o.camera) {
         char camera[256];
         std::snprintf(camera, sizeof camera, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g", o.camera->eye.x,
                       o.camera->eye.y, o.camera->eye.z, o.camera->target.x, o.camera->target.y,
                       o.camera->target.z);
         args.insert(args.end(), {"--camera", camera});
+    }
+    if (o.fovDegrees) {
+        char fov[32];
+        std::snprintf(fov, sizeof fov, "%.9g", double(*o.fovDegrees));  // every bit of the float
+        args.insert(args.end(), {"--fov", fov});
     }
     return args;
 }

@@ -16,7 +16,8 @@
 //
 // name: [a-z0-9_-], unique within the lab (it names the PNGs); number: Gradescope's test number,
 // "1.1"; points: > 0; options: raster::SceneOptions overrides (width, height, count, seed, cubes, fog
-// "constant"|"height", camera {eye, target}), every one optional, unset ones keep SceneOptions'
+// "constant"|"height", camera {eye, target}, time in seconds for an animated lab, fov the vertical
+// field of view in degrees), every one optional, unset ones keep SceneOptions'
 // defaults (camera unset: the lab's registered camera); comparison: what raster::Comparison::parse
 // reads. Unknown fields are errors (a misspelt "ponts" must not grade a scene for 0 points).
 //
