@@ -25,6 +25,9 @@ ON_EDGE = {"small_start", "tiny_image"}
 RASTERIZER_STAGE = "rasterizer: "
 # The diagnosis when the vertex buffer's data differ (particle-system's simulation), not the layout.
 SIMULATED = "the vertex buffer holds another value (check what your code computes and uploads into it)"
+# tests/grader/root's sprite-methods scenes: every one draws the firs; all but no_sprites the sprites.
+SPRITE_METHODS = {"small_start", "no_sprites", "wide_fov"}
+SPRITES = {"small_start", "wide_fov"}
 # case: (lab, scenes lost, verdict of those, words that must be in their output)
 CASES = {
     "wrong_blend": ("billboards", PARTICLES, "fail", ["blend: ", "your destination factor is Blend::InvSrcAlpha where the solution's is Blend::One"]),
@@ -38,7 +41,7 @@ CASES = {
     "unbounded_alloc": ("billboards", PARTICLES, "error", ["ran out of memory: "]),
     "fork_bomb": ("billboards", PARTICLES, "error", ["too many processes: "]),
     "snoop": ("billboards", set(), "pass", []),
-    "alternative": (("billboards", "particle-system"), set(), "pass", []),
+    "alternative": (("billboards", "particle-system", "sprite-methods"), set(), "pass", []),
     "age_offset": ("input-layout", PARTICLES, "fail", ["input assembler: ", "with AGE = ", "what the solution reads as LIFESPAN (is the element's AlignedByteOffset that field's offsetof?)"]),
     "colour_too_narrow": ("input-layout", PARTICLES, "fail", ["input assembler: ", "with COLOR = ", "the first 3 components and the defaults (0, 0, 0, 1) after them", "Format too narrow"]),
     "library_layout": ("input-layout", PARTICLES, "error", ["failed: ", "element COLOR0 (feeding `colour`) at byte 36", "stride of 48 bytes"]),
@@ -54,9 +57,15 @@ CASES = {
     "over_dest_one": ("blending", PARTICLES, "fail", ["blend: ", "your destination factor is Blend::One where the solution's is Blend::InvSrcAlpha"]),
     "front_to_back": ("blending", PARTICLES, "fail", ["blend: ", "fragments in another order: yours from depth", "(near to far), the solution's", "(far to near)"]),
     "slide_comparator": ("blending", PARTICLES, "error", ["failed: ", "drawnBefore is not a strict weak ordering", "ties must be transitive"]),
+    # sprite-methods: a wrong method or fir moves the corners its vertex or geometry shader outputs.
+    "inverse_transpose": ("sprite-methods", SPRITES, "fail", ["vertex shader: ", "from the same input: its SV_Position is"]),
+    "corners_in_world": ("sprite-methods", SPRITES, "fail", ["vertex shader: ", "from the same input: its SV_Position is"]),
+    "gs_unscaled": ("sprite-methods", SPRITES, "fail", ["geometry shader: ", "geometry shader output", "differs by"]),
+    "tree_faces_eye": ("sprite-methods", SPRITE_METHODS, "fail", ["vertex shader: ", "from the same input: its SV_Position is"]),
+    "tree_eye_as_direction": ("sprite-methods", SPRITE_METHODS, "fail", ["vertex shader: ", "from the same input: its SV_Position is"]),
 }
 SCENES = {"billboards": BILLBOARDS, "input-layout": BILLBOARDS, "rasterizer": RASTERIZER,
-          "particle-system": BILLBOARDS, "blending": BILLBOARDS}
+          "particle-system": BILLBOARDS, "blending": BILLBOARDS, "sprite-methods": SPRITE_METHODS}
 
 
 def grade(raster, submission, out, extra, cwd):

@@ -464,6 +464,97 @@ TEST(StrictWeakOrder, FindsTheSlidesIntransitiveTiesAndAcceptsThePlainKey) {
               OrderRule::Transitivity);
     const auto both = [](float a, float b) { return a != b; };
     EXPECT_EQ(findStrictWeakOrderViolation(std::span<const float>(rock), both)->rule, OrderRule::Asymmetry);
+
+// ---- sprite-methods: the three sprite methods and the firs' axis billboard ----
+
+TEST(Labs, SpriteMethodsIsRegisteredWithItsSolution) {
+    EXPECT_EQ(solutionSceneOf("sprite-methods"), "sprite-methods@solution");
+    for (const char* name : {"sprite-methods", "sprite-methods@solution"}) {
+        const auto scene = makeScene(name, {.width = 8, .height = 8, .time = 2.5});
+        EXPECT_EQ(scene->name(), name);
+        EXPECT_TRUE(scene->animated());
+        EXPECT_EQ(scene->time(), 2.5);
+        expectInvalidArgument([&] { makeScene(name, {.width = 8, .height = 8, .count = 65}); },
+                              "count (sprites per row) must be at most 64, not 65");
+    }
+}
+
+// Pixels of the fourth row where the three methods do not agree: one or two channels hold one of the
+// targets' greys (255, 150, 40) and the others something else (no other colour of the scene has such
+// a channel). `grey` counts the pixels where all three agree on a grey.
+size_t fringePixels(const RenderTarget& image, size_t* grey = nullptr) {
+    size_t fringe = 0, agree = 0;
+    for (size_t i = 0; i < size_t(image.width()) * image.height(); ++i) {
+        const uint8_t* p = image.rgba8() + 4 * i;
+        int greys = 0;
+        for (int c = 0; c < 3; ++c) greys += p[c] == 255 || p[c] == 150 || p[c] == 40;
+        const bool same = p[0] == p[1] && p[1] == p[2];
+        agree += greys == 3 && same;
+        fringe += greys > 0 && !(greys == 3 && same);
+    }
+    if (grey) *grey = agree;
+    return fringe;
+}
+
+std::vector<SceneOptions> spriteMethodsSets() {
+    return {{.width = 320, .height = 180},
+            {.width = 480, .height = 270, .time = 6.5},
+            {.width = 480, .height = 270, .time = 3, .fovDegrees = 120,
+             .camera = SceneCamera{{1.0f, 2.6f, 2.2f}, {0, 2.4f, 0}}},
+            {.width = 400, .height = 300, .count = 9, .time = 11, .seed = 3,
+             .camera = SceneCamera{{-7, 6.5f, 6}, {0, 2, -1}}},
+            {.width = 480, .height = 270, .time = 9, .fovDegrees = 100,
+             .camera = SceneCamera{{0.8f, 2.3f, 2.6f}, {0, 2.3f, 0}}}};
+}
+
+// The solution's three methods draw the same quads (docs/SPRITES.md): the fourth row, each method in
+// one channel, is grey targets with no coloured fringe, at 60°, 100° and 120° fields of view and from
+// other cameras, times and seeds; and every image is the same at 1, 2 and 8 threads.
+TEST(Labs, SpriteMethodsSolutionsThreeMethodsAgreeAndAreBitIdenticalAcrossThreads) {
+    for (const SceneOptions& o : spriteMethodsSets()) {
+        const RenderTarget one = renderScene("sprite-methods@solution", o, 1);
+        size_t grey = 0;
+        EXPECT_EQ(fringePixels(one, &grey), 0u) << o.width << "x" << o.height << " time " << o.time.value_or(0);
+        EXPECT_GT(grey, size_t(o.width) * o.height / 400) << "the fourth row is not drawn";
+        EXPECT_EQ(differingPixels(one, renderScene("sprite-methods@solution", o, 2)), 0u);
+        EXPECT_EQ(differingPixels(one, renderScene("sprite-methods@solution", o, 8)), 0u);
+    }
+}
+
+// The time moves the picture (the sprites scroll, the camera swings) and a frame is a function of the
+// time alone: a scene advanced to a time draws what a scene started there draws.
+TEST(Labs, SpriteMethodsFrameIsAFunctionOfTheTime) {
+    const SceneOptions start{.width = 320, .height = 180, .time = 1.0};
+    SceneOptions later = start;
+    later.time = 2.5;
+    auto scene = makeScene("sprite-methods@solution", start);
+    scene->advance(0.5);
+    scene->advance(1.0);
+    Context context({1});
+    RenderTarget advanced(320, 180);
+    DepthTarget depth(320, 180);
+    scene->render(context, advanced, depth);
+    const RenderTarget direct = renderScene("sprite-methods@solution", later, 1);
+    EXPECT_EQ(differingPixels(advanced, direct), 0u);
+    EXPECT_GT(differingPixels(direct, renderScene("sprite-methods@solution", start, 1)), size_t(320 * 180 / 50));
+}
+
+// As handed out: the sprites of (a) lie flat, (b) and (c) draw nothing, the firs are edge-on and every
+// quad's corners are black; the fourth row has only its red channel. Skipped once a student has started.
+TEST(Labs, SpriteMethodsAsHandedOutDiffersFromTheSolution) {
+    const std::string text = labText("labs/sprite-methods/sprite-methods.cpp");
+    for (const char* start : {"const glm::mat3 rotation = kLyingFlat;", "stream.Append({c, {1, 0}, p.tint});",
+                              "const glm::vec3 right(0.0f, 0.0f, 1.0f);",
+                              "std::optional<glm::vec4> alphaTested(glm::vec4 texel, glm::vec4 tint) {\n    return"})
+        if (text.find(start) == std::string::npos)
+            GTEST_SKIP() << "the lab has been edited (no '" << start << "')";
+    const SceneOptions o{.width = 320, .height = 180};
+    const RenderTarget lab = renderScene("sprite-methods", o);
+    EXPECT_GT(differingPixels(lab, renderScene("sprite-methods@solution", o)), size_t(320 * 180 / 10))
+        << "the picture a student starts from must be visibly wrong";
+    size_t grey = 0;
+    EXPECT_GT(fringePixels(lab, &grey), 0u) << "the handed-out methods cannot agree";
+    EXPECT_EQ(grey, 0u);
 }
 
 TEST(SceneRegistry, RefusesBadEntriesAndServesGoodOnes) {

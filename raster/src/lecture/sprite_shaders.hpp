@@ -1,6 +1,6 @@
 // The lecture's sprites and billboards (lecture 11, part 3), as shaders (functors) and the vertex data
-// they read. The answers of the sprites lab to come, so not among the library's public headers
-// (tests/lab_headers_test.py checks that no lab includes this folder).
+// they read. The answers of the sprite-methods lab (labs/sprite-methods/), so not among the library's
+// public headers (tests/lab_headers_test.py checks that no lab includes this folder).
 //
 // A camera-facing sprite of half-size s at centre c, three ways (the lecture's (a), (b), (c)):
 //   (a) VsSpriteClassic   classic transforms: the quad's model matrix is translate(c) · R⁻¹, R the view

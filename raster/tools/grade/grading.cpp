@@ -47,7 +47,7 @@ struct FieldReader {
     }
 
     SceneOptions options(const Json& j) const {
-        onlyKnown(j, {"width", "height", "count", "seed", "cubes", "fog", "camera", "time"});
+        onlyKnown(j, {"width", "height", "count", "seed", "cubes", "fog", "camera", "time", "fov"});
         SceneOptions o;
         if (j.contains("width")) o.width = whole(j["width"], "width", 1, 8192);
         if (j.contains("height")) o.height = whole(j["height"], "height", 1, 8192);
@@ -72,6 +72,12 @@ struct FieldReader {
             onlyKnown(c, {"eye", "target"});
             if (!c.contains("eye") || !c.contains("target")) fail("\"camera\" needs \"eye\" and \"target\"");
             o.camera = SceneCamera{point(c["eye"], "eye"), point(c["target"], "target")};
+        }
+        if (j.contains("fov")) {  // the vertical field of view, degrees (SceneOptions::fovDegrees)
+            if (!j["fov"].is_number() || !(j["fov"].get<double>() > 0.0) ||
+                !(j["fov"].get<double>() <= 179.0))
+                fail("\"fov\" must be a number of degrees in (0, 179], not " + j["fov"].dump());
+            o.fovDegrees = j["fov"].get<float>();
         }
         return o;
     }
@@ -171,6 +177,11 @@ std::vector<std::string> runnerOptionArgs(const SceneOptions& o) {
                       o.camera->eye.y, o.camera->eye.z, o.camera->target.x, o.camera->target.y,
                       o.camera->target.z);
         args.insert(args.end(), {"--camera", camera});
+    }
+    if (o.fovDegrees) {
+        char fov[32];
+        std::snprintf(fov, sizeof fov, "%.9g", double(*o.fovDegrees));  // every bit of the float
+        args.insert(args.end(), {"--fov", fov});
     }
     return args;
 }

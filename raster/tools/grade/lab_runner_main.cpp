@@ -5,7 +5,7 @@
 //
 //   lab_runner --scene billboards --out scene.png --width 320 --height 180 --count 500
 //              [--camera EX,EY,EZ,TX,TY,TZ] [--seed N] [--cubes N] [--fog constant|height] [--time T]
-//              [--threads N]
+//              [--fov DEGREES] [--threads N]
 //              [--path fast|plain|reference] [--pixel X,Y --history FILE]
 //
 // Exit status 0 when the image was written; 1 with a message on stderr for anything else (an option it
@@ -101,6 +101,11 @@ RunnerArgs parseArgs(int argc, char** argv) {
         else if (option == "--camera") {
             const std::vector<float> v = numbers(option, value, 6);
             a.options.camera = raster::SceneCamera{{v[0], v[1], v[2]}, {v[3], v[4], v[5]}};
+        } else if (option == "--fov") {
+            const float fov = numbers(option, value, 1)[0];
+            RASTER_REQUIRE(fov > 0.0f && fov <= 179.0f, InvalidArgument,
+                           option + ": '" + value + "' is not a field of view in (0, 179] degrees");
+            a.options.fovDegrees = fov;
         } else if (option == "--pixel") {
             const std::vector<float> v = numbers(option, value, 2);
             a.pixel = true, a.px = int32_t(v[0]), a.py = int32_t(v[1]);
