@@ -383,6 +383,7 @@ TEST(Labs, ParticleSystemAsHandedOutFreezesTheSparksAtTheEmitter) {
     EXPECT_EQ(differingPixels(lab, renderScene("particle-system", later)), 0u) << "nothing moves";
     // 21 236 of 129 600 pixels (2026-12-04): the fountain's glow and the side view's dots.
     EXPECT_GT(differingPixels(lab, solution), 10000u) << "the picture a student starts from is visibly wrong";
+}
 
 // ---- blending: the lecture's five blend and depth figures, and the comparator ----
 
@@ -464,6 +465,7 @@ TEST(StrictWeakOrder, FindsTheSlidesIntransitiveTiesAndAcceptsThePlainKey) {
               OrderRule::Transitivity);
     const auto both = [](float a, float b) { return a != b; };
     EXPECT_EQ(findStrictWeakOrderViolation(std::span<const float>(rock), both)->rule, OrderRule::Asymmetry);
+}
 
 // ---- sprite-methods: the three sprite methods and the firs' axis billboard ----
 
