@@ -8,12 +8,12 @@
 #include "bench_soft.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <memory>
 #include <vector>
 
+#include "bench_timing.hpp"
 #include "raster/image_compare.hpp"
 #include "raster/pipeline.hpp"
 #include "raster/soft_particles.hpp"
@@ -43,15 +43,8 @@ Frame renderTimed(const SceneOptions& options, const OffscreenParticles& offscre
     // path's error; in float the full-resolution frame is the reference it should be.
     Frame f{RenderTarget(options.width, options.height, Format::R32G32B32A32_FLOAT),
             DepthTarget(options.width, options.height)};
-    scene->render(context, f.color, f.depth);  // warm-up: the targets' and buffers' first touches
-    std::vector<double> ms;
-    for (uint32_t k = 0; k < frames; ++k) {
-        const auto t0 = std::chrono::steady_clock::now();
-        scene->render(context, f.color, f.depth);
-        ms.push_back(
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-    }
-    std::sort(ms.begin(), ms.end());
+    // The same simulation state each frame (no advance), after a warm-up frame.
+    const std::vector<double> ms = timeFrames(*scene, context, f.color, f.depth, frames, 0.0);
     f.msMedian = ms[ms.size() / 2];
     return f;
 }

@@ -1,4 +1,4 @@
-// The frame timing of raster bench (bench.cpp, bench_blend.cpp): one warm-up frame, then K timed ones.
+// The frame timing of raster bench (bench.cpp, bench_blend.cpp, bench_soft.cpp): one warm-up frame, then K timed ones.
 #pragma once
 
 #include <algorithm>
