@@ -55,7 +55,10 @@ CASES = {
     "blend_alternative": ("blending", set(), "pass", []),
     "blend_depth_write": ("blending", PARTICLES, "fail", ["depth test: ", "is depth write on?", "your depth write is on where the solution's is off"]),
     "over_dest_one": ("blending", PARTICLES, "fail", ["blend: ", "your destination factor is Blend::One where the solution's is Blend::InvSrcAlpha"]),
-    "front_to_back": ("blending", PARTICLES, "fail", ["blend: ", "fragments in another order: yours from depth", "(near to far), the solution's", "(far to near)"]),
+    "front_to_back": ("blending", PARTICLES, "fail", ["blend: ", "fragments in another order: yours from depth", "(near to far), the solution's", "(far to near)", "yours is the solution's order reversed"]),
+    # The sorted panel's particles aligned by their vertices (another order is not other geometry).
+    "unsorted_key": ("blending", PARTICLES, "fail", ["blend: ", "fragments in another order", "yours takes them in the vertex buffer's order, as stored"]),
+    "half_done_blending": ("blending", PARTICLES, "fail", ["blend: ", "your blending is off where the solution's is on"]),
     "slide_comparator": ("blending", PARTICLES, "error", ["failed: ", "drawnBefore is not a strict weak ordering", "ties must be transitive"]),
     # sprite-methods: a wrong method or fir moves the corners its vertex or geometry shader outputs.
     "inverse_transpose": ("sprite-methods", SPRITES, "fail", ["vertex shader: ", "from the same input: its SV_Position is"]),

@@ -4,6 +4,7 @@
 // runner (grade/trace_json.hpp) read back field for field.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -250,6 +251,144 @@ TEST(GradeDiagnose, RasterizerStateDifferencesAreListed) {
     EXPECT_TRUE(grade::drawStateDifferences(coverageFrame(corners, false, mine),
                                             coverageFrame(corners, true, mine), 0)
                     .empty());
+}
+
+// One indexed draw of particles, two triangles each (vertices 4k .. 4k + 3), in `order`; the triangle
+// (4k, 4k + 1, 4k + 2) of each particle in `at_pixel` covers the pixel, in the draw's order. Particle k
+// lies at depth kQuadDepth[k] with colour kQuadColour[k]; each fragment written with the draw's states.
+struct QuadFrame {
+    static constexpr float kQuadDepth[3] = {0.5f, 0.7f, 0.3f};  // middle, far, near
+    static inline const glm::vec4 kQuadColour[3] = {
+        {0.5f, 0.5f, 0.5f, 0.75f}, {0.1f, 0.3f, 1, 0.75f}, {1, 0.75f, 0.1f, 0.75f}};
+    Trace trace{TraceOptions{.pixels = {kX, kY, kX, kY}}};
+
+    QuadFrame(const BlendState& blend, const DepthStencilState& depth, const std::vector<uint32_t>& order,
+              const std::vector<uint32_t>& at_pixel) {
+        TraceDraw& d = trace.beginDraw(16, 16);
+        d.draw = 1;
+        d.vertexShader = "VsQuad", d.pixelShader = "PsDisc";
+        d.topology = Topology::TriangleList;
+        d.blend = blend, d.depthStencil = depth;
+        d.verticesPerPrimitive = 3, d.primitivesPerInstance = uint32_t(2 * order.size());
+        for (const uint32_t k : order)
+            for (const uint32_t corner : {0u, 1u, 2u, 0u, 2u, 3u})
+                d.primitiveVertices.push_back(4 * k + corner);
+        std::vector<TraceFragment> fragments;
+        glm::vec4 colour = kBlack;
+        float stored = 1.0f;
+        for (size_t position = 0; position < order.size(); ++position) {
+            const uint32_t k = order[position];
+            if (std::find(at_pixel.begin(), at_pixel.end(), k) == at_pixel.end()) continue;
+            const bool passed = !depth.depthEnable || kQuadDepth[k] < stored;
+            const glm::vec4 before = colour, src = kQuadColour[k];
+            const float keep = blend.target(0).destBlend == Blend::One ? 1.0f : 1.0f - src.a;
+            if (passed) colour = blend.target(0).blendEnable ? src * src.a + before * keep : src;
+            const float depth_before = stored;
+            if (passed && depth.depthEnable && depth.depthWriteMask) stored = kQuadDepth[k];
+            fragments.push_back({1, uint32_t(2 * position), kX, kY, kQuadDepth[k], depth_before, stored,
+                                 passed ? FragmentFate::Written : FragmentFate::EarlyDepthFailed, passed,
+                                 passed ? src : glm::vec4(NAN), before, colour});
+        }
+        trace.addFragments(fragments);
+    }
+};
+
+// The solution's: "over", depth test without write, back to front (particle 1, 0, 2).
+QuadFrame sortedSolution() {
+    return QuadFrame(BlendState::alphaBlend(), DepthStencilState::readOnly(), {1, 0, 2}, {0, 1, 2});
+}
+
+// A half-done lab: blending off, depth write on (other fates, other outputs) and the storage order: its
+// primitive k is not the solution's primitive k. Aligned by the primitives' vertices, the diagnosis is
+// the order, not the geometry of whichever particle comes first.
+TEST(GradeDiagnose, PrimitivesInAnotherOrderAreNamedByTheirVertices) {
+    const QuadFrame yours(BlendState{}, DepthStencilState{}, {0, 1, 2}, {0, 1, 2});
+    const QuadFrame theirs = sortedSolution();
+    const grade::Diagnosis d = grade::diagnosePixel(yours.trace, theirs.trace, kX, kY);
+    EXPECT_EQ(d.stage, DiagnosisStage::Blend) << d.headline;
+    for (const char* words :
+         {"pixel (5, 7), draw 1: your draw 1 brings the solution's 3 fragments in another order: yours from "
+          "depth 0.5 to 0.3 (far to near), the solution's from depth 0.7 to 0.3 (far to near): yours takes "
+          "them in the vertex buffer's order, as stored, the solution's not: are they sorted at all",
+          "the same primitives, by their vertices: your 0, 2, 4 in your order are the solution's 2, 0, 4",
+          "; besides, your blending is off where the solution's is on"})
+        EXPECT_NE(d.headline.find(words), std::string::npos) << d.headline << "\nlacks: " << words;
+    EXPECT_NE(std::find(d.details.begin(), d.details.end(),
+                        "draw 1 depth-stencil: your depth write is on where the solution's is off"),
+              d.details.end());
+    // Front to back, the states right: the other way round.
+    const QuadFrame reversed(BlendState::alphaBlend(), DepthStencilState::readOnly(), {2, 0, 1}, {0, 1, 2});
+    const grade::Diagnosis r = grade::diagnosePixel(reversed.trace, theirs.trace, kX, kY);
+    EXPECT_EQ(r.stage, DiagnosisStage::Blend) << r.headline;
+    for (const char* words :
+         {"yours from depth 0.3 to 0.7 (near to far), the solution's from depth 0.7 to 0.3 "
+          "(far to near): yours is the solution's order reversed: is the comparator's "
+          "comparison the wrong way round",
+          "your 0, 2, 4 in your order are the solution's 4, 2, 0"})
+        EXPECT_NE(r.headline.find(words), std::string::npos) << r.headline << "\nlacks: " << words;
+    EXPECT_EQ(r.headline.find("besides"), std::string::npos) << r.headline;
+    // The solution against itself: nothing.
+    EXPECT_EQ(grade::diagnosePixel(theirs.trace, theirs.trace, kX, kY).stage, DiagnosisStage::None);
+}
+
+// Another order elsewhere, one particle at the pixel: your primitive 4 is compared with the solution's
+// primitive 2 (the same vertices), and the blend that differs is named on it.
+TEST(GradeDiagnose, RenumberedPrimitiveIsComparedWithTheSolutionsSame) {
+    BlendState wrong = BlendState::alphaBlend();
+    wrong.renderTarget[0].destBlend = Blend::One;
+    const QuadFrame yours(wrong, DepthStencilState::readOnly(), {1, 2, 0}, {0});
+    const QuadFrame theirs(BlendState::alphaBlend(), DepthStencilState::readOnly(), {1, 0, 2}, {0});
+    const grade::Diagnosis d = grade::diagnosePixel(yours.trace, theirs.trace, kX, kY);
+    EXPECT_EQ(d.stage, DiagnosisStage::Blend) << d.headline;
+    EXPECT_NE(
+        d.headline.find("pixel (5, 7), draw 1, your primitive 4 (the solution's 2): your destination factor "
+                        "is Blend::One where the solution's is Blend::InvSrcAlpha"),
+        std::string::npos)
+        << d.headline;
+}
+
+// A particle drawn twice and another left out: named as primitives your draw lacks or repeats.
+TEST(GradeDiagnose, PrimitiveTheSolutionLacksIsNamedWithItsVertices) {
+    const QuadFrame yours(BlendState::alphaBlend(), DepthStencilState::readOnly(), {0, 0, 2}, {0, 2});
+    const QuadFrame theirs(BlendState::alphaBlend(), DepthStencilState::readOnly(), {0, 1, 2}, {0, 1, 2});
+    const grade::Diagnosis d = grade::diagnosePixel(yours.trace, theirs.trace, kX, kY);
+    EXPECT_EQ(d.stage, DiagnosisStage::InputAssembler) << d.headline;
+    EXPECT_NE(d.headline.find("draw 1: the solution's primitive 2, with the vertices "
+                              "(4, 5, 6), is not in your draw: your draw's index buffer (or its range) holds "
+                              "other primitives than the solution's"),
+              std::string::npos)
+        << d.headline;
+    const QuadFrame twice(BlendState::alphaBlend(), DepthStencilState::readOnly(), {0, 0, 1}, {0, 1});
+    const QuadFrame once(BlendState::alphaBlend(), DepthStencilState::readOnly(), {0, 1, 2}, {0, 1});
+    const grade::Diagnosis t = grade::diagnosePixel(twice.trace, once.trace, kX, kY);
+    EXPECT_EQ(t.stage, DiagnosisStage::InputAssembler) << t.headline;
+    EXPECT_NE(
+        t.headline.find("your primitive 2 has the vertices (0, 1, 2), which your draw has 2 times and the "
+                        "solution's 1"),
+        std::string::npos)
+        << t.headline;
+}
+
+TEST(GradeDiagnose, TraceJsonCarriesThePrimitivesVertices) {
+    const QuadFrame f = sortedSolution();
+    std::string json = grade::traceToJson(f.trace);
+    const Trace back = grade::traceFromJson(json, "test");
+    ASSERT_EQ(back.draws().size(), 1u);
+    EXPECT_EQ(back.draws()[0].primitiveVertices, f.trace.draws()[0].primitiveVertices);
+    EXPECT_EQ(back.draws()[0].verticesPerPrimitive, 3u);
+    EXPECT_EQ(back.draws()[0].primitivesPerInstance, 6u);
+    // A trace without them (written before they were recorded) reads, with none.
+    const std::string field = "\"primitiveVertices\":[3,6,[";
+    const size_t at = json.find(field);
+    ASSERT_NE(at, std::string::npos) << json;
+    std::string old = json;
+    old.erase(at - 1, json.find("]]", at) + 2 - (at - 1));  // with the comma before it
+    const Trace without = grade::traceFromJson(old, "test");
+    EXPECT_TRUE(without.draws()[0].primitiveVertices.empty()) << old;
+    EXPECT_EQ(without.draws()[0].verticesPerPrimitive, 0u);
+    // Not a whole number of primitives: refused.
+    json.replace(at, field.size(), "\"primitiveVertices\":[3,6,[7,");
+    EXPECT_THROW(grade::traceFromJson(json, "test"), Error);
 }
 
 // A point-list draw without a geometry shader, as the input-layout lab draws: primitive 2 is vertex 2,

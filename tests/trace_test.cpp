@@ -793,6 +793,9 @@ TEST(TraceGeometry, RecordsAreCappedButCounted) {
         EXPECT_EQ(d.gsVertices[i].primitive, i / 4);
         EXPECT_EQ(d.primitives[i].primitive, i);
     }
+    ASSERT_EQ(d.primitiveVertices.size(), kCap);  // a point each
+    EXPECT_EQ(d.primitiveVertices[kCap - 1], kCap - 1);
+    EXPECT_EQ(d.primitivesPerInstance, kCount);
 
     // geometry = false keeps none (but the statistics).
     Trace bare({.geometry = false});
@@ -803,6 +806,34 @@ TEST(TraceGeometry, RecordsAreCappedButCounted) {
     EXPECT_TRUE(bare.draws()[1].gsVertices.empty());
     EXPECT_TRUE(bare.draws()[1].primitives.empty());
     EXPECT_EQ(bare.draws()[1].stats.gsInvocations, kCount);
+}
+
+// Each input primitive's vertices are the buffer indices the input assembler fetched: the index
+// buffer's from startIndex on, plus baseVertex, instance by instance; a point list's are its vertices.
+TEST(TraceGeometry, PrimitiveVerticesAreTheIndexBuffersPlusTheBaseVertex) {
+    Target8 t;
+    const std::vector<glm::vec4> corners = {{-1, -1, 0.5f, 1}, {1, -1, 0.5f, 1}, {1, 1, 0.5f, 1},
+                                            {-1, 1, 0.5f, 1},  {0, 0, 0.5f, 1},  {0, 1, 0.5f, 1}};
+    const VertexBuffer vertices = VertexBuffer::create(corners);
+    const IndexBuffer indices = IndexBuffer::create(std::vector<uint32_t>{9, 9, 9, 2, 0, 1, 3, 4, 2});
+    t.ctx.setVertexBuffer(0, &vertices);
+    t.ctx.setIndexBuffer(&indices);
+    Trace trace;
+    t.ctx.setTrace(&trace);
+    t.ctx.drawIndexedInstanced(VsClip{}, PsConstant{kRed}, 6, 2, 3, 1);  // indices 3..8, base vertex 1
+    t.ctx.draw(VsClip{}, PsConstant{kRed}, 3);
+    ASSERT_EQ(trace.draws().size(), 2u);
+    const TraceDraw& d = trace.draws()[0];
+    EXPECT_EQ(d.verticesPerPrimitive, 3u);
+    EXPECT_EQ(d.primitivesPerInstance, 2u);
+    EXPECT_EQ(d.primitiveVertices, (std::vector<uint32_t>{3, 1, 2, 4, 5, 3, 3, 1, 2, 4, 5, 3}));
+    EXPECT_EQ(trace.draws()[1].primitiveVertices, (std::vector<uint32_t>{0, 1, 2}));
+    t.ctx.setPrimitiveTopology(Topology::PointList);
+    trace.clear();
+    t.ctx.draw(VsClip{}, PsConstant{kRed}, 4, 1);
+    ASSERT_EQ(trace.draws().size(), 1u);
+    EXPECT_EQ(trace.draws()[0].verticesPerPrimitive, 1u);
+    EXPECT_EQ(trace.draws()[0].primitiveVertices, (std::vector<uint32_t>{1, 2, 3, 4}));
 }
 
 TEST(TraceGeometry, ReferencePipelineKeepsBillboardsAsTwoTriangles) {

@@ -126,6 +126,13 @@ struct TraceDraw {
     std::vector<TraceVertex> vertices;
     std::vector<TraceGsVertex> gsVertices;
     std::vector<TracePrimitive> primitives;
+    // The input primitives as the input assembler made them, in SV_PrimitiveID order (instances counted
+    // on): primitive p's vertices are the buffer indices (SV_VertexID) primitiveVertices[n·p .. n·p + n),
+    // n = verticesPerPrimitive (1 point, 2 line, 3 triangle), of instance p / primitivesPerInstance; the
+    // first maxGeometryRecords primitives. What makes primitive p of one frame the same as primitive q of
+    // another drawing the same buffer in another order (an index buffer sorted otherwise).
+    std::vector<uint32_t> primitiveVertices;
+    uint32_t verticesPerPrimitive = 0, primitivesPerInstance = 0;
     uint64_t verticesTotal = 0, gsVerticesTotal = 0, primitivesTotal = 0;  // before truncation
     PipelineStatistics stats;
     bool skipped = false;  // past the step limit: validated, not run

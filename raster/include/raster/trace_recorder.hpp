@@ -86,7 +86,7 @@ struct FragmentTracer {
 };
 
 // Vertex shader records: the first `cap` invocations' inputs (fetched again, as the input
-// assembler did) and outputs.
+// assembler did) and outputs; and the first `cap` input primitives' vertex indices.
 template <class VsIn, class VsOut>
 void traceVertices(TraceDraw& d, uint32_t cap, std::span<const InputFetch> program,
                    std::span<const VertexBuffer* const> slots, const AssembledDraw& draw, const DrawCall& call,
@@ -107,6 +107,13 @@ void traceVertices(TraceDraw& d, uint32_t cap, std::span<const InputFetch> progr
         v.output.assign(o, o + output_floats);  // ≤ kVertexFloats<VsOut>
         d.vertices.push_back(std::move(v));
     }
+    // Each input primitive's vertices, as buffer indices, instance by instance.
+    const uint32_t n = uint32_t(draw.kind), per_instance_primitives = draw.primitiveCount();
+    d.verticesPerPrimitive = n, d.primitivesPerInstance = per_instance_primitives;
+    const uint64_t primitives = uint64_t(per_instance_primitives) * call.instanceCount;
+    for (uint64_t p = 0; p < primitives && p < cap; ++p)
+        for (uint32_t k = 0; k < n; ++k)
+            d.primitiveVertices.push_back(draw.fetch[draw.primitives[(p % per_instance_primitives) * n + k]]);
 }
 
 }  // namespace raster::detail

@@ -62,16 +62,95 @@ void addIfDifferent(std::vector<std::string>& out, const std::string& prefix, co
         out.push_back(prefix + "your " + what + " is " + yours + " where the solution's is " + theirs);
 }
 
+// ---- Which primitive of the solution's is yours: the same vertices ----
+
+// One input primitive in both frames: your primitive `mine` and the solution's `theirs`, the same
+// number unless the draws order their primitives otherwise (alignDraw).
+struct Ids {
+    uint32_t mine, theirs;
+};
+
+// Whether input primitive p of d was recorded with its vertices (TraceDraw::primitiveVertices).
+bool hasVertices(const TraceDraw& d, uint32_t p) {
+    const uint32_t n = d.verticesPerPrimitive;
+    return n != 0 && d.primitivesPerInstance != 0 && (uint64_t(p) + 1) * n <= d.primitiveVertices.size();
+}
+// Primitive p of a and primitive q of b are one primitive: the same instance, the same vertex indices.
+bool sameVertices(const TraceDraw& a, uint32_t p, const TraceDraw& b, uint32_t q) {
+    const uint32_t n = a.verticesPerPrimitive;
+    return hasVertices(a, p) && hasVertices(b, q) && n == b.verticesPerPrimitive &&
+           p / a.primitivesPerInstance == q / b.primitivesPerInstance &&
+           std::equal(a.primitiveVertices.begin() + size_t(p) * n,
+                      a.primitiveVertices.begin() + size_t(p + 1) * n,
+                      b.primitiveVertices.begin() + size_t(q) * n);
+}
+// "(4, 5, 6)" (", instance 2" after it past the first instance).
+std::string verticesText(const TraceDraw& d, uint32_t p) {
+    if (!hasVertices(d, p)) return "(not recorded)";
+    std::string out = "(";
+    for (uint32_t k = 0; k < d.verticesPerPrimitive; ++k)
+        out += fmt(k ? ", %u" : "%u", d.primitiveVertices[size_t(p) * d.verticesPerPrimitive + k]);
+    out += ")";
+    if (const uint32_t instance = p / d.primitivesPerInstance) out += fmt(", instance %u", instance);
+    return out;
+}
+// How many primitives of d before p have p's vertices.
+size_t occurrence(const TraceDraw& d, uint32_t p) {
+    size_t k = 0;
+    for (uint32_t j = 0; j < p; ++j) k += sameVertices(d, j, d, p);
+    return k;
+}
+// The primitive of `to` with the vertices of primitive p of `from` (the k-th such for the k-th such:
+// a primitive drawn twice matches twice); none when `to` has no more of them or either side did not
+// record them.
+std::optional<uint32_t> counterpart(const TraceDraw& from, uint32_t p, const TraceDraw& to) {
+    if (!hasVertices(from, p) || to.verticesPerPrimitive != from.verticesPerPrimitive) return std::nullopt;
+    size_t k = occurrence(from, p);
+    const uint32_t count = uint32_t(to.primitiveVertices.size() / to.verticesPerPrimitive);
+    for (uint32_t q = 0; q < count; ++q)
+        if (sameVertices(from, p, to, q) && k-- == 0) return q;
+    return std::nullopt;
+}
+// How many primitives of d have the vertices of primitive p of `of`.
+size_t countWith(const TraceDraw& d, const TraceDraw& of, uint32_t p) {
+    size_t k = 0;
+    const uint32_t count =
+        d.verticesPerPrimitive ? uint32_t(d.primitiveVertices.size() / d.verticesPerPrimitive) : 0;
+    for (uint32_t q = 0; q < count; ++q) k += sameVertices(of, p, d, q);
+    return k;
+}
+
 // ---- The input assembler and the vertex shader, vertex by vertex ----
 
-// Records to compare for input primitive p: a point list's own vertex (record p: the fetch order of a
-// draw that is not indexed, instances counted on), else every record both traces hold, in order.
-std::vector<size_t> verticesOf(const TraceDraw& a, const TraceDraw& b, uint32_t p) {
+// The record of buffer vertex `index` of `instance`; none when not recorded.
+std::optional<size_t> vertexRecord(const TraceDraw& d, uint32_t instance, uint32_t index) {
+    for (size_t i = 0; i < d.vertices.size(); ++i)
+        if (d.vertices[i].index == index && d.vertices[i].instance == instance) return i;
+    return std::nullopt;
+}
+
+// Records to compare for input primitive p, (yours, the solution's): the primitive's own vertices first
+// when both traces recorded them; then a point list's own vertex (record p: the fetch order of a draw
+// that is not indexed, instances counted on), or every record both traces hold, in order (the callers
+// stop at the first pair fetched from different vertices).
+std::vector<std::pair<size_t, size_t>> verticesOf(const TraceDraw& a, const TraceDraw& b, Ids p) {
+    std::vector<std::pair<size_t, size_t>> out;
+    if (hasVertices(a, p.mine) && hasVertices(b, p.theirs)) {
+        const uint32_t n = a.verticesPerPrimitive, instance = p.mine / a.primitivesPerInstance;
+        for (uint32_t k = 0; k < n && k < b.verticesPerPrimitive; ++k) {
+            const auto i = vertexRecord(a, instance, a.primitiveVertices[size_t(p.mine) * n + k]);
+            const auto j = vertexRecord(b, p.theirs / b.primitivesPerInstance,
+                                        b.primitiveVertices[size_t(p.theirs) * b.verticesPerPrimitive + k]);
+            if (i && j) out.emplace_back(*i, *j);
+        }
+    }
     const size_t n = std::min(a.vertices.size(), b.vertices.size());
-    if (a.topology == Topology::PointList) return p < n ? std::vector<size_t>{p} : std::vector<size_t>{};
-    std::vector<size_t> all(n);
-    for (size_t i = 0; i < n; ++i) all[i] = i;
-    return all;
+    if (a.topology == Topology::PointList) {
+        if (p.mine < n && p.theirs < n) out.emplace_back(p.mine, p.theirs);
+        return out;
+    }
+    for (size_t i = 0; i < n; ++i) out.emplace_back(i, i);
+    return out;
 }
 
 const TraceField* fieldNamed(const TraceDraw& d, const std::string& name) {
@@ -124,9 +203,9 @@ std::string inputHint(const TraceDraw& theirs, const TraceVertex& b, const Trace
 }
 
 // The vertex shader's input, field by field by semantic: what the input assembler handed it.
-std::optional<Found> inputDifference(const TraceDraw& yours, const TraceDraw& theirs, uint32_t p) {
-    for (const size_t i : verticesOf(yours, theirs, p)) {
-        const TraceVertex &a = yours.vertices[i], &b = theirs.vertices[i];
+std::optional<Found> inputDifference(const TraceDraw& yours, const TraceDraw& theirs, Ids p) {
+    for (const auto& [i, j] : verticesOf(yours, theirs, p)) {
+        const TraceVertex &a = yours.vertices[i], &b = theirs.vertices[j];
         if (a.index != b.index || a.instance != b.instance) return std::nullopt;  // other draws: not the IA
         for (const TraceField& f : yours.inputFields) {
             const TraceField* g = fieldNamed(theirs, f.name);
@@ -164,11 +243,11 @@ std::string positionText(const glm::vec4& mine, const glm::vec4& theirs, const T
 
 // The vertex shader's outputs given the same inputs (inputDifference found none).
 std::optional<Found> vsOutputDifference(const Trace& trace, const TraceDraw& yours, const TraceDraw& theirs,
-                                        uint32_t p) {
+                                        Ids p) {
     if (yours.vsFloats != theirs.vsFloats || yours.vsPosition != theirs.vsPosition) return std::nullopt;
     const uint32_t at = yours.vsPosition;
-    for (const size_t i : verticesOf(yours, theirs, p)) {
-        const TraceVertex &a = yours.vertices[i], &b = theirs.vertices[i];
+    for (const auto& [i, j] : verticesOf(yours, theirs, p)) {
+        const TraceVertex &a = yours.vertices[i], &b = theirs.vertices[j];
         if (a.index != b.index || a.instance != b.instance) return std::nullopt;
         const size_t n = std::min(a.output.size(), b.output.size());
         if (at + 4 <= n) {
@@ -213,10 +292,10 @@ std::vector<const TracePrimitive*> primitivesOf(const TraceDraw& d, uint32_t p) 
     return out;
 }
 
-std::optional<Found> gsCountDifference(const TraceDraw& yours, const TraceDraw& theirs, uint32_t p) {
+std::optional<Found> gsCountDifference(const TraceDraw& yours, const TraceDraw& theirs, Ids p) {
     if (yours.geometryShader.empty() || theirs.geometryShader.empty()) return std::nullopt;
-    const auto [your_vertices, your_triangles] = gsOutput(yours, p);
-    const auto [their_vertices, their_triangles] = gsOutput(theirs, p);
+    const auto [your_vertices, your_triangles] = gsOutput(yours, p.mine);
+    const auto [their_vertices, their_triangles] = gsOutput(theirs, p.theirs);
     if (your_vertices == their_vertices && your_triangles == their_triangles) return std::nullopt;
     return Found{DiagnosisStage::GeometryShader,
                  fmt("the geometry shader emitted %zu triangle%s (%zu vertices) for this input primitive "
@@ -236,10 +315,9 @@ std::vector<glm::vec4> gsPositions(const TraceDraw& d, uint32_t p) {
 }
 
 // The geometry shader's output positions for input primitive p, vertex by vertex.
-std::optional<Found> gsPositionDifference(const Trace& yours, const TraceDraw& a, const TraceDraw& b,
-                                          uint32_t p) {
+std::optional<Found> gsPositionDifference(const Trace& yours, const TraceDraw& a, const TraceDraw& b, Ids p) {
     if (a.geometryShader.empty() || a.gsFloats < 4 || b.gsFloats < 4) return std::nullopt;
-    const std::vector<glm::vec4> mine = gsPositions(a, p), theirs = gsPositions(b, p);
+    const std::vector<glm::vec4> mine = gsPositions(a, p.mine), theirs = gsPositions(b, p.theirs);
     for (size_t k = 0; k < std::min(mine.size(), theirs.size()); ++k) {
         if (same(mine[k], theirs[k])) continue;
         std::string text =
@@ -254,11 +332,12 @@ std::optional<Found> gsPositionDifference(const Trace& yours, const TraceDraw& a
     return std::nullopt;
 }
 
-std::optional<Found> positionDifference(const TraceDraw& yours, const TraceDraw& theirs, uint32_t p) {
+std::optional<Found> positionDifference(const TraceDraw& yours, const TraceDraw& theirs, Ids p) {
     const bool gs = !yours.geometryShader.empty();
     const DiagnosisStage stage = gs ? DiagnosisStage::GeometryShader : DiagnosisStage::VertexShader;
     const char* shader = gs ? "geometry shader" : "vertex shader";
-    const std::vector<const TracePrimitive*> a = primitivesOf(yours, p), b = primitivesOf(theirs, p);
+    const std::vector<const TracePrimitive*> a = primitivesOf(yours, p.mine),
+                                             b = primitivesOf(theirs, p.theirs);
     for (size_t i = 0; i < std::min(a.size(), b.size()); ++i) {
         if (a[i]->vertexCount != b[i]->vertexCount) break;
         for (int k = 0; k < a[i]->vertexCount; ++k) {
@@ -286,13 +365,13 @@ std::optional<Found> positionDifference(const TraceDraw& yours, const TraceDraw&
     return std::nullopt;
 }
 
-std::optional<Found> attributeDifference(const TraceDraw& yours, const TraceDraw& theirs, uint32_t p) {
+std::optional<Found> attributeDifference(const TraceDraw& yours, const TraceDraw& theirs, Ids p) {
     if (yours.geometryShader.empty() || yours.gsFloats != theirs.gsFloats) return std::nullopt;
     std::vector<const TraceGsVertex*> a, b;
     for (const TraceGsVertex& v : yours.gsVertices)
-        if (v.primitive == p) a.push_back(&v);
+        if (v.primitive == p.mine) a.push_back(&v);
     for (const TraceGsVertex& v : theirs.gsVertices)
-        if (v.primitive == p) b.push_back(&v);
+        if (v.primitive == p.theirs) b.push_back(&v);
     for (size_t i = 0; i < std::min(a.size(), b.size()); ++i)
         for (size_t c = 0; c < std::min(a[i]->values.size(), b[i]->values.size()); ++c)
             if (!same(a[i]->values[c], b[i]->values[c]))
@@ -304,7 +383,7 @@ std::optional<Found> attributeDifference(const TraceDraw& yours, const TraceDraw
     return std::nullopt;
 }
 
-std::optional<Found> geometryDifference(const Trace& yours, const Trace& theirs, uint32_t draw, uint32_t p) {
+std::optional<Found> geometryDifference(const Trace& yours, const Trace& theirs, uint32_t draw, Ids p) {
     const TraceDraw* a = findDraw(yours, draw);
     const TraceDraw* b = findDraw(theirs, draw);
     if (!a || !b)
@@ -387,8 +466,6 @@ std::optional<Found> fragmentDifference(const TraceFragment& a, const TraceFragm
     return std::nullopt;
 }
 
-using Key = std::pair<uint32_t, uint32_t>;  // (draw, primitive)
-
 // ---- Coverage: one side's primitive covers the pixel, the other's not, from the same positions ----
 
 // The triangle a traced primitive was set up from (its screen positions are the snapped ones, exact
@@ -444,37 +521,223 @@ std::string coverageHint(const TriangleSetup& t, int32_t x, int32_t y, bool your
     return text;
 }
 
-std::optional<Found> coverageDifference(const Trace& yours, Key key, int32_t x, int32_t y, size_t mine,
-                                        size_t theirs) {
+std::optional<Found> coverageDifference(const Trace& yours, uint32_t draw, Ids p, int32_t x, int32_t y,
+                                        size_t mine, size_t theirs) {
+    const std::string which = p.mine == p.theirs ? fmt("primitive %u", p.mine)
+                                                 : fmt("primitive %u (the solution's %u)", p.mine, p.theirs);
     std::string text =
         mine > theirs
-            ? fmt("your rasterizer covered pixel (%d, %d) with primitive %u %zu time%s, the solution's %zu",
-                  x, y, key.second, mine, mine == 1 ? "" : "s", theirs)
-            : fmt("your rasterizer did not cover pixel (%d, %d) with primitive %u (%zu fragment%s), the "
-                  "solution's did (%zu)",
-                  x, y, key.second, mine, mine == 1 ? "" : "s", theirs);
+            ? fmt("your rasterizer covered pixel (%d, %d) with ", x, y) + which +
+                  fmt(" %zu time%s, the solution's %zu", mine, mine == 1 ? "" : "s", theirs)
+            : fmt("your rasterizer did not cover pixel (%d, %d) with ", x, y) + which +
+                  fmt(" (%zu fragment%s), the solution's did (%zu)", mine, mine == 1 ? "" : "s", theirs);
     text += " from the same positions after setup";
     std::string hint;
-    if (const TraceDraw* d = findDraw(yours, key.first))
-        for (const TracePrimitive* p : primitivesOf(*d, key.second))
-            if (const std::optional<TriangleSetup> t = tracedTriangle(*p); t && hint.empty())
+    if (const TraceDraw* d = findDraw(yours, draw))
+        for (const TracePrimitive* prim : primitivesOf(*d, p.mine))
+            if (const std::optional<TriangleSetup> t = tracedTriangle(*prim); t && hint.empty())
                 hint = coverageHint(*t, x, y, mine > theirs);
     text += hint.empty() ? ": compare the rasterizer state (culling, scissor) and the coverage test"
                          : ": " + hint;
     return Found{DiagnosisStage::Rasterizer, text};
 }
 
-std::map<Key, std::vector<TraceFragment>> byKey(const std::vector<TraceFragment>& fragments) {
-    std::map<Key, std::vector<TraceFragment>> out;
-    for (const TraceFragment& f : fragments) out[{f.draw, f.primitive}].push_back(f);
+// ---- Aligning the two histories: which fragment of yours is which of the solution's ----
+
+// One input primitive of one draw in both frames, with its fragments at the pixel in output-merger
+// order. A side whose draw lacks the primitive has none (mine or theirs empty, its fragments too).
+struct Pair {
+    uint32_t draw;
+    std::optional<uint32_t> mine, theirs;
+    std::vector<TraceFragment> a, b;  // yours of `mine`, the solution's of `theirs`
+};
+
+// The primitives of one draw at the pixel, each with its fragments, in the order the output merger
+// saw them.
+std::vector<std::pair<uint32_t, std::vector<TraceFragment>>> primitivesAt(
+    const std::vector<TraceFragment>& history, uint32_t draw) {
+    std::vector<std::pair<uint32_t, std::vector<TraceFragment>>> out;
+    for (const TraceFragment& f : history) {
+        if (f.draw != draw) continue;
+        auto it = std::find_if(out.begin(), out.end(), [&](const auto& e) { return e.first == f.primitive; });
+        if (it == out.end()) it = out.insert(out.end(), {f.primitive, {}});
+        it->second.push_back(f);
+    }
     return out;
+}
+
+// One draw's primitives at the pixel, aligned. By number when numbers and vertices agree (or the
+// traces did not record the primitives' vertices); else by vertices (TraceDraw::primitiveVertices):
+// your primitive p is the solution's q when both have the same instance and vertex indices, as when
+// an index buffer is sorted otherwise. `reordered`: aligned by vertices, the same primitives as the
+// solution's at the pixel, in another order.
+struct DrawAlignment {
+    std::vector<Pair> pairs;  // by vertices: those one side lacks first, then in the solution's order
+    bool byVertices = false, reordered = false;
+};
+
+DrawAlignment alignDraw(const Trace& yours, const Trace& theirs, uint32_t draw,
+                        const std::vector<TraceFragment>& history_a,
+                        const std::vector<TraceFragment>& history_b) {
+    const auto mine = primitivesAt(history_a, draw), their = primitivesAt(history_b, draw);
+    const TraceDraw* a = findDraw(yours, draw);
+    const TraceDraw* b = findDraw(theirs, draw);
+    std::vector<std::optional<uint32_t>> to_theirs, to_mine;
+    bool by_number = true;
+    if (a && b && a->verticesPerPrimitive != 0 && a->verticesPerPrimitive == b->verticesPerPrimitive) {
+        for (const auto& [q, f] : their) to_mine.push_back(counterpart(*b, q, *a));
+        for (const auto& [p, f] : mine) to_theirs.push_back(counterpart(*a, p, *b));
+        for (size_t j = 0; j < their.size(); ++j) by_number = by_number && to_mine[j] == their[j].first;
+        for (size_t i = 0; i < mine.size(); ++i) by_number = by_number && to_theirs[i] == mine[i].first;
+    }
+    DrawAlignment out;
+    if (by_number) {
+        std::map<uint32_t, Pair> pairs;
+        for (const auto& [p, f] : mine) pairs.try_emplace(p, Pair{draw, p, p, {}, {}}).first->second.a = f;
+        for (const auto& [q, f] : their) pairs.try_emplace(q, Pair{draw, q, q, {}, {}}).first->second.b = f;
+        for (auto& [number, pair] : pairs) out.pairs.push_back(std::move(pair));
+        return out;
+    }
+    out.byVertices = true;
+    for (size_t j = 0; j < their.size(); ++j) {
+        Pair pair{draw, to_mine[j], their[j].first, {}, their[j].second};
+        for (const auto& [p, f] : mine)
+            if (to_mine[j] == p) pair.a = f;
+        out.pairs.push_back(std::move(pair));
+    }
+    std::vector<uint32_t> sequence, expected;  // the solution's numbers, in your order and in theirs
+    for (const auto& [q, f] : their) expected.push_back(q);
+    for (size_t i = 0; i < mine.size(); ++i) {
+        if (to_theirs[i]) sequence.push_back(*to_theirs[i]);
+        if (!to_theirs[i] || std::find(expected.begin(), expected.end(), *to_theirs[i]) == expected.end())
+            out.pairs.push_back({draw, mine[i].first, to_theirs[i], mine[i].second, {}});
+    }
+    // A primitive one side lacks first (the input assembler's difference, before any fragment's), then
+    // the solution's order.
+    std::stable_sort(out.pairs.begin(), out.pairs.end(), [](const Pair& x, const Pair& y) {
+        const auto key = [](const Pair& p) {
+            return std::pair{p.mine && p.theirs, p.theirs.value_or(p.mine.value_or(0))};
+        };
+        return key(x) < key(y);
+    });
+    std::vector<uint32_t> sorted_sequence = sequence, sorted_expected = expected;
+    std::sort(sorted_sequence.begin(), sorted_sequence.end());
+    std::sort(sorted_expected.begin(), sorted_expected.end());
+    out.reordered = sequence.size() == mine.size() && sequence.size() >= 2 &&
+                    sorted_sequence == sorted_expected && sequence != expected;
+    return out;
+}
+
+// A primitive one side's draw has and the other's lacks, aligned by vertices: the index buffer (or the
+// draw's range) holds other primitives than the solution's.
+Found missingPrimitive(const TraceDraw& yours, const TraceDraw& theirs, const Pair& pair) {
+    if (pair.mine) {
+        const size_t in_yours = countWith(yours, yours, *pair.mine),
+                     in_theirs = countWith(theirs, yours, *pair.mine);
+        return Found{
+            DiagnosisStage::InputAssembler,
+            fmt("your primitive %u has the vertices ", *pair.mine) + verticesText(yours, *pair.mine) +
+                (in_theirs == 0
+                     ? std::string(", which no primitive of the solution's draw has")
+                     : fmt(", which your draw has %zu times and the solution's %zu", in_yours, in_theirs)) +
+                ": your draw's index buffer (or its range) holds other primitives than the solution's "
+                "(is every element drawn once, each with its own vertices?)"};
+    }
+    const size_t in_yours = countWith(yours, theirs, *pair.theirs),
+                 in_theirs = countWith(theirs, theirs, *pair.theirs);
+    return Found{DiagnosisStage::InputAssembler,
+                 fmt("the solution's primitive %u, with the vertices ", *pair.theirs) +
+                     verticesText(theirs, *pair.theirs) +
+                     (in_yours == 0 ? std::string(", is not in your draw")
+                                    : fmt(", is in your draw %zu times and in the solution's %zu", in_yours,
+                                          in_theirs)) +
+                     ": your draw's index buffer (or its range) holds other primitives than the solution's "
+                     "(is every element drawn once, each with its own vertices?)"};
 }
 
 // ---- The draw order: the same fragments of one draw, in another order ----
 
-// A draw whose fragments at the pixel are the solution's (depth and shader output, as a multiset) in
-// another sequence: the primitives were drawn in another order (an index buffer sorted otherwise).
-// Compared primitive by primitive these would look like wrong geometry, so this comes first.
+// "from depth 0.9767 to 0.9519 (far to near)": the first and last depths of a draw's fragments at the
+// pixel and which is nearer (the ends only: the fragments' depths between need not follow a sort by the
+// elements' centres).
+std::string direction(const std::vector<const TraceFragment*>& v) {
+    return fmt("from depth %.4g to %.4g (%s)", v.front()->depth, v.back()->depth,
+               v.front()->depth > v.back()->depth   ? "far to near"
+               : v.front()->depth < v.back()->depth ? "near to far"
+                                                    : "first and last at one depth");
+}
+
+constexpr const char* kOrderHint = ": is the sort key or the comparator wrong (back to front for \"over\")?";
+
+// The order words for one draw: yours against the solution's, then `hint` (": what to check").
+std::string orderText(uint32_t draw, const std::vector<const TraceFragment*>& a,
+                      const std::vector<const TraceFragment*>& b, const std::string& hint = kOrderHint) {
+    return fmt("your draw %u brings the solution's %zu fragments in another order: yours ", draw, a.size()) +
+           direction(a) + ", the solution's " + direction(b) + hint;
+}
+
+std::vector<const TraceFragment*> pointers(const std::vector<TraceFragment>& history, uint32_t draw) {
+    std::vector<const TraceFragment*> out;
+    for (const TraceFragment& f : history)
+        if (f.draw == draw) out.push_back(&f);
+    return out;
+}
+
+// Whether a draw takes `primitives` in its vertex buffer's order: instance, then first vertex index,
+// strictly ascending (an index buffer of elements as stored, never sorted).
+bool inBufferOrder(const TraceDraw& d, const std::vector<uint32_t>& primitives) {
+    const auto key = [&](uint32_t p) {
+        return std::pair{p / d.primitivesPerInstance,
+                         d.primitiveVertices[size_t(p) * d.verticesPerPrimitive]};
+    };
+    for (size_t i = 1; i < primitives.size(); ++i)
+        if (!(key(primitives[i - 1]) < key(primitives[i]))) return false;
+    return true;
+}
+
+// Aligned by vertices, the same primitives in another order: what the two orders are to each other
+// (reversed; yours as stored in the vertex buffer), their numbers, then the order words. Compared
+// primitive by primitive, the fragments would look like wrong geometry.
+Found vertexOrderDifference(const Trace& yours, const Trace& theirs, const DrawAlignment& alignment,
+                            const std::vector<TraceFragment>& history_a,
+                            const std::vector<TraceFragment>& history_b, uint32_t draw) {
+    std::vector<const Pair*> by_yours;
+    for (const Pair& p : alignment.pairs) by_yours.push_back(&p);
+    const auto first = [&](const Pair* p) {
+        return std::find_if(history_a.begin(), history_a.end(), [&](const TraceFragment& f) {
+            return f.draw == draw && f.primitive == *p->mine;
+        });
+    };
+    std::sort(by_yours.begin(), by_yours.end(),
+              [&](const Pair* x, const Pair* y) { return first(x) < first(y); });
+    std::vector<uint32_t> mine, as_theirs,
+        expected;  // yours, yours as the solution's numbers, the solution's
+    for (const Pair* p : by_yours) mine.push_back(*p->mine), as_theirs.push_back(*p->theirs);
+    for (const Pair& p : alignment.pairs) expected.push_back(*p.theirs);  // in the solution's order
+    std::string hint = kOrderHint;
+    if (std::equal(as_theirs.begin(), as_theirs.end(), expected.rbegin()))
+        hint =
+            ": yours is the solution's order reversed: is the comparator's comparison the wrong way round "
+            "(back to front, the farthest first, for \"over\")?";
+    else if (inBufferOrder(*findDraw(yours, draw), mine) && !inBufferOrder(*findDraw(theirs, draw), expected))
+        hint =
+            ": yours takes them in the vertex buffer's order, as stored, the solution's not: are they "
+            "sorted at all (is the sort key each element's own view depth, and is the sorted order the one "
+            "drawn)?";
+    std::string numbers_yours, numbers_theirs;
+    for (size_t i = 0; i < mine.size() && i < 8; ++i) {
+        numbers_yours += fmt(i ? ", %u" : "%u", mine[i]);
+        numbers_theirs += fmt(i ? ", %u" : "%u", as_theirs[i]);
+    }
+    if (mine.size() > 8) numbers_yours += ", ...", numbers_theirs += ", ...";
+    return Found{DiagnosisStage::Blend,
+                 orderText(draw, pointers(history_a, draw), pointers(history_b, draw), hint) +
+                     " (the same primitives, by their vertices: your " + numbers_yours +
+                     " in your order are the solution's " + numbers_theirs + ")"};
+}
+
+// Without the primitives' vertices: a draw whose fragments at the pixel are the solution's (depth and
+// shader output, as a multiset) in another sequence: the primitives were drawn in another order.
 std::optional<std::pair<uint32_t, Found>> orderDifference(const std::vector<TraceFragment>& yours,
                                                           const std::vector<TraceFragment>& theirs) {
     std::map<uint32_t, std::pair<std::vector<const TraceFragment*>, std::vector<const TraceFragment*>>> draws;
@@ -498,37 +761,41 @@ std::optional<std::pair<uint32_t, Found>> orderDifference(const std::vector<Trac
         std::stable_sort(x.begin(), x.end(), before);
         std::stable_sort(y.begin(), y.end(), before);
         if (!std::equal(x.begin(), x.end(), y.begin(), sameFragment)) continue;
-        const auto direction = [](const std::vector<const TraceFragment*>& v) {
-            return fmt("from depth %.4g to %.4g (%s)", v.front()->depth, v.back()->depth,
-                       v.front()->depth > v.back()->depth   ? "far to near"
-                       : v.front()->depth < v.back()->depth ? "near to far"
-                                                            : "first and last at one depth");
-        };
-        return std::pair{
-            draw, Found{DiagnosisStage::Blend,
-                        fmt("your draw %u brings the solution's %zu fragments in another order: yours ", draw,
-                            a.size()) +
-                            direction(a) + ", the solution's " + direction(b) +
-                            ": is the sort key or the comparator wrong (back to front for \"over\")?"}};
+        return std::pair{draw, Found{DiagnosisStage::Blend, orderText(draw, a, b)}};
     }
     return std::nullopt;
 }
 
-// The first difference at one (draw, primitive): geometry, then coverage, then fragment by fragment.
-std::optional<Found> keyDifference(const Trace& yours, const Trace& theirs, Key key,
-                                   const std::vector<TraceFragment>& a, const std::vector<TraceFragment>& b) {
-    if (auto found = geometryDifference(yours, theirs, key.first, key.second)) return found;
+// The first difference at one primitive: geometry, then coverage, then fragment by fragment.
+std::optional<Found> pairDifference(const Trace& yours, const Trace& theirs, const Pair& pair,
+                                    bool by_vertices) {
+    const TraceDraw* da = findDraw(yours, pair.draw);
+    const TraceDraw* db = findDraw(theirs, pair.draw);
+    if (by_vertices && da && db && (!pair.mine || !pair.theirs)) return missingPrimitive(*da, *db, pair);
+    const Ids ids{*pair.mine, *pair.theirs};
+    if (auto found = geometryDifference(yours, theirs, pair.draw, ids)) return found;
+    const std::vector<TraceFragment>&a = pair.a, &b = pair.b;
     if (a.size() != b.size()) {
         const int32_t x = !a.empty() ? a.front().x : b.front().x, y = !a.empty() ? a.front().y : b.front().y;
-        return coverageDifference(yours, key, x, y, a.size(), b.size());
+        return coverageDifference(yours, pair.draw, ids, x, y, a.size(), b.size());
     }
     std::vector<std::string> blend_differences;
-    for (const std::string& line : drawStateDifferences(yours, theirs, key.first))
+    for (const std::string& line : drawStateDifferences(yours, theirs, pair.draw))
         if (line.find(" blend: ") != std::string::npos)
             blend_differences.push_back(line.substr(line.find(": ") + 2));
     for (size_t i = 0; i < a.size(); ++i)
         if (auto found = fragmentDifference(a[i], b[i], blend_differences)) return found;
     return std::nullopt;
+}
+
+// "pixel (x, y), draw d, primitive p: ", or "..., your primitive p (the solution's q): " when aligned by
+// vertices; "pixel (x, y), draw d: " for a primitive one side lacks (the text names it).
+std::string where(int32_t x, int32_t y, const Pair& pair) {
+    if (!pair.mine || !pair.theirs) return fmt("pixel (%d, %d), draw %u: ", x, y, pair.draw);
+    if (*pair.mine == *pair.theirs)
+        return fmt("pixel (%d, %d), draw %u, primitive %u: ", x, y, pair.draw, *pair.mine);
+    return fmt("pixel (%d, %d), draw %u, your primitive %u (the solution's %u): ", x, y, pair.draw,
+               *pair.mine, *pair.theirs);
 }
 
 }  // namespace
@@ -603,48 +870,57 @@ std::vector<std::string> drawStateDifferences(const Trace& submission, const Tra
     }
     return out;
 }
-
 Diagnosis diagnosePixel(const Trace& submission, const Trace& solution, int32_t x, int32_t y) {
     Diagnosis d;
-    const auto yours = byKey(submission.pixelHistory(x, y));
-    const auto theirs = byKey(solution.pixelHistory(x, y));
-    std::vector<Key> keys;
-    for (const auto& [key, fragments] : yours) keys.push_back(key);
-    for (const auto& [key, fragments] : theirs) keys.push_back(key);
-    std::sort(keys.begin(), keys.end());
-    keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
-    static const std::vector<TraceFragment> kNone;
-    if (const auto order = orderDifference(submission.pixelHistory(x, y), solution.pixelHistory(x, y))) {
+    const std::vector<TraceFragment>&mine = submission.pixelHistory(x, y),
+          &theirs = solution.pixelHistory(x, y);
+    std::vector<uint32_t> draws;
+    for (const auto* history : {&mine, &theirs})
+        for (const TraceFragment& f : *history) draws.push_back(f.draw);
+    std::sort(draws.begin(), draws.end());
+    draws.erase(std::unique(draws.begin(), draws.end()), draws.end());
+    std::vector<DrawAlignment> alignments;
+    for (const uint32_t draw : draws)
+        alignments.push_back(alignDraw(submission, solution, draw, mine, theirs));
+    // The order first: compared primitive by primitive, another order would read as other geometry.
+    std::optional<std::pair<uint32_t, Found>> order;
+    for (size_t k = 0; k < draws.size() && !order; ++k)
+        if (alignments[k].reordered)
+            order = std::pair{
+                draws[k], vertexOrderDifference(submission, solution, alignments[k], mine, theirs, draws[k])};
+    if (!order) order = orderDifference(mine, theirs);
+    if (order) {
         d.stage = order->second.stage;
         d.headline = fmt("pixel (%d, %d), draw %u: ", x, y, order->first) + order->second.text;
-        for (const std::string& line : drawStateDifferences(submission, solution, order->first))
-            d.details.push_back(line);
-        keys.clear();
+        const std::vector<std::string> states = drawStateDifferences(submission, solution, order->first);
+        if (!states.empty())  // a state to fix as well, whatever the order (the sort changes no state)
+            d.headline += "; besides, " + states.front().substr(states.front().find(": ") + 2);
+        d.details = states;
+        alignments.clear();
     }
-    for (const Key& key : keys) {
-        const auto a = yours.find(key), b = theirs.find(key);
-        const std::optional<Found> found =
-            keyDifference(submission, solution, key, a == yours.end() ? kNone : a->second,
-                          b == theirs.end() ? kNone : b->second);
-        if (!found) continue;
-        d.stage = found->stage;
-        d.headline =
-            fmt("pixel (%d, %d), draw %u, primitive %u: ", x, y, key.first, key.second) + found->text;
-        for (const std::string& line : drawStateDifferences(submission, solution, key.first))
-            d.details.push_back(line);
-        break;
+    for (const DrawAlignment& alignment : alignments) {
+        for (const Pair& pair : alignment.pairs) {
+            const std::optional<Found> found =
+                pairDifference(submission, solution, pair, alignment.byVertices);
+            if (!found) continue;
+            d.stage = found->stage;
+            d.headline = where(x, y, pair) + found->text;
+            d.details = drawStateDifferences(submission, solution, pair.draw);
+            break;
+        }
+        if (d.stage != DiagnosisStage::None) break;
     }
     if (d.stage == DiagnosisStage::None) {
         d.headline =
             fmt("pixel (%d, %d): its history is the same in your render and the solution's (%zu fragments)",
-                x, y, submission.pixelHistory(x, y).size());
-        const size_t draws = std::max(submission.draws().size(), solution.draws().size());
-        for (uint32_t draw = 0; draw < draws; ++draw)
+                x, y, mine.size());
+        const size_t count = std::max(submission.draws().size(), solution.draws().size());
+        for (uint32_t draw = 0; draw < count; ++draw)
             for (const std::string& line : drawStateDifferences(submission, solution, draw))
                 d.details.push_back(line);
     }
-    d.details.push_back(fmt("fragments at this pixel: %zu in yours, %zu in the solution's",
-                            submission.pixelHistory(x, y).size(), solution.pixelHistory(x, y).size()));
+    d.details.push_back(
+        fmt("fragments at this pixel: %zu in yours, %zu in the solution's", mine.size(), theirs.size()));
     return d;
 }
 

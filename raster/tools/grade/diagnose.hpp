@@ -10,17 +10,26 @@
 // Both traces must have recorded the pixel's fragments (TraceOptions::pixels) and the geometry
 // (TraceOptions::geometry, with enough maxGeometryRecords for the draw's primitives).
 //
-// How the histories are aligned: fragments by (draw, primitive), the key the output merger orders them
-// by, in that order. For each key, in order, the stages are compared from first to last, and the first
-// difference found is the diagnosis:
+// How the histories are aligned: fragments by draw, then by input primitive, the keys the output merger
+// orders them by. A primitive is known by its vertices (instance and vertex-buffer indices,
+// TraceDraw::primitiveVertices): where the two draws number the pixel's primitives otherwise (an index
+// buffer sorted otherwise), your primitive p is paired with the solution's q of the same vertices, not
+// with its q = p. First, per draw: the same primitives at the pixel in another order is the diagnosis
+// (DiagnosisStage::Blend, the order the output merger blends them in: both orders' depths, whether
+// yours is the solution's reversed or the vertex buffer's own, the numbers paired, and a state of the
+// draw that differs too); without recorded vertices, the same when the fragments (depth, shader output)
+// are the solution's in another sequence. Then for each pair, in the solution's order (a primitive one
+// side's draw lacks or repeats first: InputAssembler, with its vertices), the stages are compared from
+// first to last, and the first difference found is the diagnosis:
 //   1. the draw itself: a draw the other frame lacks; shaders or topology (DiagnosisStage::Draw)
 //   2. geometry of that input primitive: the vertex shader's inputs as the input assembler fetched them,
-//      field by field by semantic (InputAssembler: a wrong offset or format in the input layout, or other data in the buffer), then
-//      its outputs given the same inputs (VertexShader; positions also in pixels); the geometry shader's
-//      vertex count (as triangles of its strips) and output positions, else the positions after setup
-//      (GeometryShader, VertexShader); the primitives set up from it (Rasterizer: a fragment one side
-//      has and the other not, with the same geometry). The vertices compared are the primitive's own
-//      for a point list (vertex p of primitive p) and every recorded one otherwise.
+//      field by field by semantic (InputAssembler: a wrong offset or format in the input layout, or other
+//      data in the buffer), then its outputs given the same inputs (VertexShader; positions also in pixels);
+//      the geometry shader's vertex count (as triangles of its strips) and output positions, else the
+//      positions after setup (GeometryShader, VertexShader); the primitives set up from it (Rasterizer: a
+//      fragment one side has and the other not, with the same geometry). The vertices compared are the
+//      primitive's own (recorded vertices; else vertex p of a point list's primitive p), then every recorded
+//      one in order while both fetched the same vertex.
 //   3. the fragment's depth test and depth write (DepthTest)
 //   4. the pixel shader's output (PixelShader)
 //   5. the colour after the output merger, given the same shader output and colour before (Blend)

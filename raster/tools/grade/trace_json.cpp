@@ -66,7 +66,8 @@ Json drawJson(const TraceDraw& d) {
         {"inputFields", std::move(fields)},
         {"vertices", std::move(vertices)},
         {"gsVertices", std::move(gs)},
-        {"primitives", std::move(primitives)}};
+        {"primitives", std::move(primitives)},
+        {"primitiveVertices", {d.verticesPerPrimitive, d.primitivesPerInstance, d.primitiveVertices}}};
 }
 
 Json fragmentJson(const TraceFragment& f) {
@@ -203,6 +204,22 @@ struct Reader {
             for (size_t k = 0; k < screen.size(); ++k) out.screen[k] = vec(screen[k]);
             d.primitives.push_back(out);
         }
+        primitiveVertices(j, d);
+    }
+
+    // Optional (a trace written before it was recorded has none): the input primitives' vertex indices.
+    void primitiveVertices(const Json& j, TraceDraw& d) const {
+        if (!j.contains("primitiveVertices")) return;
+        const Json& p = at(j, "primitiveVertices");
+        d.verticesPerPrimitive = uint32_t(whole(item(p, 0, "primitiveVertices"), 3));
+        d.primitivesPerInstance = uint32_t(whole(item(p, 1, "primitiveVertices"), UINT32_MAX));
+        for (const Json& v : array(item(p, 2, "primitiveVertices"), "primitiveVertices"))
+            d.primitiveVertices.push_back(uint32_t(whole(v, UINT32_MAX)));
+        if (d.verticesPerPrimitive == 0 ? !d.primitiveVertices.empty()
+                                        : d.primitiveVertices.size() % d.verticesPerPrimitive != 0)
+            fail("primitiveVertices: not a whole number of primitives");
+        if (!d.primitiveVertices.empty() && d.primitivesPerInstance == 0)
+            fail("primitiveVertices: primitives without an instance size");
     }
 
     void draw(const Json& j, TraceDraw& d) const {

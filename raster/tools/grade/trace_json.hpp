@@ -4,8 +4,9 @@
 // against the solution's, recorded in-process.
 //
 // What is kept: every draw's record (shader names, topology, blend and depth-stencil state, the vertex
-// and geometry shaders' output records, the primitives after setup) and the fragments of the traced
-// pixels. Not kept: the per-pixel overdraw and non-finite counts, the pipeline statistics.
+// and geometry shaders' output records, the primitives after setup, the input primitives' vertex indices:
+// optional when read, a trace without them reads as one that did not record them) and the fragments of
+// the traced pixels. Not kept: the per-pixel overdraw and non-finite counts, the pipeline statistics.
 //
 // The JSON comes from the submission's process, so it is untrusted: traceFromJson checks every field's
 // type and range and throws Error(BadFile) naming `name` and the field at the first that is wrong (a
