@@ -4,8 +4,9 @@
     grade_cli_test.py RASTER SOURCE_DIR WORK_DIR CASE
 
 CASE is `solutions` or `labs` (the source tree's own folders, graded on the real declarations: full
-marks, and less than full marks on every lab), or the name of a folder of tests/grader/ (graded on the
-small scenes of tests/grader/root, only the lab it holds (--lab): each must lose exactly the scenes its
+marks, and less than full marks on every lab), or the name of a folder of tests/grader/ (its patches
+applied to today's solutions in a folder under WORK_DIR by grader_submissions.py, graded on the small
+scenes of tests/grader/root, only the labs it holds (--lab): each must lose exactly the scenes its
 defect reaches, with the diagnosis or the reason naming it). Exit status 0 when every check holds, 1
 with what did not.
 """
@@ -14,7 +15,10 @@ import os
 import shutil
 import subprocess
 import sys
+import tempfile
 import time
+
+import grader_submissions
 
 PARTICLES = {"small_start", "close_few"}  # tests/grader/root's billboards (input-layout, blending) scenes that draw particles
 BILLBOARDS = {"small_start", "no_particles", "close_few"}
@@ -107,10 +111,9 @@ def check_real(raster, source, out, case):
     return errors
 
 
-def check_case(raster, source, out, case):
+def check_case(raster, source, out, case, submission):
     lab, lost, verdict, words = CASES[case]
     labs = lab if isinstance(lab, tuple) else (lab,)  # a case may hold several labs' files
-    submission = os.path.join(source, "tests", "grader", case)
     root = os.path.join(source, "tests", "grader", "root")
     # The render limit: 4 s for infinite_loop, whose two looping scenes burn it whole; 30 s for
     # unbounded_alloc, so that on a loaded machine its 768 MiB run out before the clock does (it took
@@ -148,7 +151,16 @@ def main():
     raster, source, work, case = sys.argv[1:5]
     out = os.path.join(work, "grade-" + case)
     shutil.rmtree(out, ignore_errors=True)
-    errors = check_real(raster, source, out, case) if case in ("solutions", "labs") else check_case(raster, source, out, case)
+    if case in ("solutions", "labs"):
+        errors = check_real(raster, source, out, case)
+    else:
+        with tempfile.TemporaryDirectory(prefix=f"grade-{case}-", dir=work) as made:
+            try:
+                submission = grader_submissions.materialise(source, case, made)  # made/<case>/<lab>/<lab>.cpp
+            except grader_submissions.PatchError as e:
+                print("FAILED:", e)
+                return 1
+            errors = check_case(raster, source, out, case, submission)
     for e in errors:
         print("FAILED:", e)
     return 1 if errors else 0

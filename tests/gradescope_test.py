@@ -24,6 +24,8 @@ import tempfile
 import time
 import zipfile
 
+import grader_submissions
+
 LAB = "billboards"
 # tests/grader/'s submission that crashes in the geometry shader: it loses every scene with particles
 # (the real ones all have them), and quickly: no diagnosis (a picture defect's costs two traced renders
@@ -225,10 +227,11 @@ def case_errors(name, results, check):
     return errors
 
 
-def grade_errors(source, root, env):
+def grade_errors(source, root, env, made):
     errors = []
     solution = os.path.join(source, "solutions", LAB, f"{LAB}.cpp")
-    wrong = os.path.join(source, "tests", "grader", WRONG, LAB, f"{LAB}.cpp")
+    # tests/grader/crash/billboards.patch applied to today's solution (tests/grader_submissions.py).
+    wrong = os.path.join(grader_submissions.materialise(source, WRONG, made), LAB, f"{LAB}.cpp")
     cases = [
         ("the solution, a loose file", {f"{LAB}.cpp": solution},
          lambda r: [] if r["tests"] and r["score"] == total(r) > 0 and f"{LAB}: graded {LAB}.cpp" in r["output"]
@@ -288,7 +291,7 @@ def main():
     env = dict(os.environ, AUTOGRADER_ROOT=root, RASTER_AUTOGRADER_PREBUILT=build, RASTER_AUTOGRADER_JOBS="2")
     errors += setup_errors(root, env)
     if not errors:
-        errors += grade_errors(source, root, env)
+        errors += grade_errors(source, root, env, os.path.join(top, "made"))
     for e in errors:
         print("FAILED:", e)
     return 1 if errors else 0
