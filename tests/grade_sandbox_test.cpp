@@ -17,6 +17,7 @@
 #include <fstream>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "grade/sandbox.hpp"
@@ -92,9 +93,18 @@ std::vector<pid_t> liveMembers(pid_t group) {
 }
 
 // Nothing the sandbox started is left: its group has no live process and this test has no child.
+// A grandchild killed with the group may still be on its way out when runSandboxed returns (SIGKILL
+// is acted on when the process next runs: on a loaded machine, milliseconds later), so the group
+// gets a few seconds to empty; a process that survived the kill never does.
 void expectNothingLeft(const SandboxResult& result) {
     ASSERT_GT(result.pid, 0);
-    EXPECT_TRUE(liveMembers(result.pid).empty()) << "a process of the child's group is still alive";
+    const auto start = std::chrono::steady_clock::now();
+    std::vector<pid_t> alive = liveMembers(result.pid);
+    while (!alive.empty() && std::chrono::steady_clock::now() - start < std::chrono::seconds(5)) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        alive = liveMembers(result.pid);
+    }
+    EXPECT_TRUE(alive.empty()) << alive.size() << " process(es) of the child's group still alive after 5 s";
     errno = 0;
     EXPECT_EQ(waitpid(-1, nullptr, WNOHANG), -1) << "the test still has a child";
     EXPECT_EQ(errno, ECHILD);
@@ -166,11 +176,13 @@ TEST(Sandbox, HangIsKilledWithItsGrandchildrenAtTheWallLimit) {
     EXPECT_EQ(r.outcome, SandboxOutcome::WallTimeLimit);
     EXPECT_TRUE(r.killedBySandbox);
     EXPECT_EQ(r.signal, SIGKILL);
+    // Killed at the limit, not when the sleeps end (100 s): the bounds leave room for a loaded
+    // machine (ctest -j beside the grade tests), where the watcher may wake late.
     EXPECT_GE(r.wallSeconds, 1.0);
-    EXPECT_LT(r.wallSeconds, 1.5);
+    EXPECT_LT(r.wallSeconds, 10.0);
     EXPECT_GE(took, 1.0);
-    EXPECT_LT(took, 2.0) << "runSandboxed must return about when the limit passes";
-    EXPECT_NE(r.description.find("wall-time limit of 1 s exceeded: killed after 1."), std::string::npos)
+    EXPECT_LT(took, 10.0) << "runSandboxed must return about when the limit passes";
+    EXPECT_NE(r.description.find("wall-time limit of 1 s exceeded: killed after "), std::string::npos)
         << r.description;
     EXPECT_LT(r.cpuSeconds, 0.5);
     expectNothingLeft(r);
