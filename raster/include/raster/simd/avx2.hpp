@@ -100,7 +100,8 @@ template <int N>
         const __m256i wb14 = _mm256_cvtps_epi32(__m256(beta[n] * kFootprintBetaScale));
         wb[n] = _mm256_or_si256(_mm256_slli_epi32(wb14, 16), _mm256_sub_epi32(_mm256_set1_epi32(kFootprintBetaOne), wb14));
     }
-    for (int c = 0; c < 4; ++c)
+    // Alpha first: the blend scales every channel by it, so its chain is the longest to the store.
+    for (const int c : {3, 0, 1, 2})
         for (int n = 0; n < N; ++n) {
             const __m256i bytes = channel[n][c];
             // t00, t01 as words: 1·t0 + 0·t1, one operation where a shift pair is two (commit a4281f8)
