@@ -66,14 +66,17 @@ template <int N>
     // portable.hpp (exact there, below 2^19), by a shorter chain to the loads: convert, multiply
     // and one add where that has two float adds, a convert and a shift; the loads wait at the head
     // of each pair's chain (perf: the samples pile up on the first footprint loads).
-    const __m256i stride16 = _mm256_set1_epi32(16 * grid.stride), origin16 = _mm256_set1_epi32(16 * (grid.stride + 1));
+    const __m256i stride16 = _mm256_set1_epi32(16 * grid.stride),
+                  origin16 = _mm256_set1_epi32(16 * (grid.stride + 1));
     for (int n = 0; n < N; ++n) {
         const F32x8 a = min(max(u[n] * grid.width - 0.5f, splat(-1.0f)), splat(grid.lastI));
         const F32x8 b = min(max(v[n] * grid.height - 0.5f, splat(-1.0f)), splat(grid.lastJ));
         const F32x8 i = floor(a), j = floor(b);
         alpha[n] = a - i, beta[n] = b - j;
-        const __m256i column = _mm256_add_epi32(_mm256_slli_epi32(_mm256_cvtps_epi32(__m256(i)), 4), origin16);
-        index[n] = U32x8(_mm256_add_epi32(_mm256_mullo_epi32(_mm256_cvtps_epi32(__m256(j)), stride16), column));
+        const __m256i column =
+            _mm256_add_epi32(_mm256_slli_epi32(_mm256_cvtps_epi32(__m256(i)), 4), origin16);
+        index[n] =
+            U32x8(_mm256_add_epi32(_mm256_mullo_epi32(_mm256_cvtps_epi32(__m256(j)), stride16), column));
     }
     // One 16-byte load per lane (channel-major already), then a transpose into one register per
     // channel holding, per lane, the channel's bytes of the four texels (00, 10, 01, 11). (AVX2's
