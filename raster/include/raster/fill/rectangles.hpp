@@ -64,6 +64,7 @@ class RectangleBlocks {
           x1_(std::min(r.box.x1, tile_.x1)),
           y0_(std::max(r.box.y0, tile_.y0)),
           y1_(std::min(r.box.y1, tile_.y1)),
+          cx0_(x0_ & ~3),
           bx_(r.box.x0),
           by_(r.box.y0),
           z8_(float(z)) {
@@ -72,6 +73,7 @@ class RectangleBlocks {
     }
 
     [[gnu::always_inline]] void run() {
+        columnParts();
         bool done = false;
         if constexpr (kWideMerge) done = wholeBlocks();
         rows_in_front_ = false;
@@ -86,11 +88,21 @@ class RectangleBlocks {
         const Float8 j = Float8(float(y - by_)) + lane_y;
         for (uint32_t k = 0; k < kN; ++k) row_part[k] = j * plane_y_[k];
     }
-    [[gnu::always_inline]] Wide<V> inputs(int32_t x, const Float8 (&row_part)[kN]) const {
+    // base + i·step_x of every block column of the rectangle in the tile, found once: the same for
+    // every row pair, and the head of each block's dependency chain (the texture coordinates) is
+    // then one add. Per attribute, so that those the shader never reads are never stored.
+    [[gnu::always_inline]] void columnParts() {
         const Float8 lane_x(simd::F32x8{0, 1, 2, 3, 0, 1, 2, 3});
-        const Float8 i = Float8(float(x - bx_)) + lane_x;
+        for (int32_t x = cx0_, c = 0; x <= x1_; x += 4, ++c) {
+            RASTER_DCHECK(c < kMaxBlocks);
+            const Float8 i = Float8(float(x - bx_)) + lane_x;
+            for (uint32_t k = 0; k < kN; ++k) column_part_[k][c] = plane_[k] + i * plane_x_[k];
+        }
+    }
+    [[gnu::always_inline]] Wide<V> inputs(int32_t x, const Float8 (&row_part)[kN]) const {
+        const int32_t c = (x - cx0_) >> 2;
         Float8 f[kN];
-        for (uint32_t k = 0; k < kN; ++k) f[k] = plane_[k] + i * plane_x_[k] + row_part[k];
+        for (uint32_t k = 0; k < kN; ++k) f[k] = column_part_[k][c] + row_part[k];
         Wide<V> in;
         static_assert(sizeof in == sizeof f);
         std::memcpy(static_cast<void*>(&in), f, sizeof f);
@@ -340,8 +352,10 @@ class RectangleBlocks {
     const Color color_;
     const Shader shader_;
     const int32_t x0_, x1_, y0_, y1_;  // the rectangle's box within the tile
+    const int32_t cx0_;                // the first block column's left pixel
     const int32_t bx_, by_;            // the box's top-left pixel: attribute plane origin
     Float8 plane_[kN], plane_x_[kN], plane_y_[kN];
+    Float8 column_part_[kN][kMaxBlocks];  // columnParts(), block column c at pixel cx0_ + 4c
     const Float8 z8_;
     // Counted per block only what cannot be counted per rectangle (see count()).
     uint64_t blocks_ = 0, live_lanes_ = 0, no_ops_ = 0, ceiling_ = 0, whole_lanes_ = 0, passed_ = 0,

@@ -61,14 +61,22 @@ template <int N>
                                                     const F32x8 (&u)[N], const F32x8 (&v)[N], F32x8 (&out)[N][4]) {
     F32x8 alpha[N], beta[N];
     U32x8 index[N];
+    // The footprint's byte offset 16·((j + 1)·stride + (i + 1)), in integers (below 2^23), unsigned
+    // so that each lane's address needs no sign extension. The same offsets as the float index of
+    // portable.hpp (exact there, below 2^19), by a shorter chain to the loads: convert, multiply
+    // and one add where that has two float adds, a convert and a shift; the loads wait at the head
+    // of each pair's chain (perf: the samples pile up on the first footprint loads).
+    const __m256i stride16 = _mm256_set1_epi32(16 * grid.stride),
+                  origin16 = _mm256_set1_epi32(16 * (grid.stride + 1));
     for (int n = 0; n < N; ++n) {
         const F32x8 a = min(max(u[n] * grid.width - 0.5f, splat(-1.0f)), splat(grid.lastI));
         const F32x8 b = min(max(v[n] * grid.height - 0.5f, splat(-1.0f)), splat(grid.lastJ));
         const F32x8 i = floor(a), j = floor(b);
         alpha[n] = a - i, beta[n] = b - j;
-        // The footprint's byte offset, the index (j + 1)·stride + (i + 1) exact in float (below 2^19),
-        // unsigned so that each lane's address needs no sign extension.
-        index[n] = U32x8(__builtin_convertvector(j * grid.rowStride + i + grid.originIndex, I32x8) << 4);
+        const __m256i column =
+            _mm256_add_epi32(_mm256_slli_epi32(_mm256_cvtps_epi32(__m256(i)), 4), origin16);
+        index[n] =
+            U32x8(_mm256_add_epi32(_mm256_mullo_epi32(_mm256_cvtps_epi32(__m256(j)), stride16), column));
     }
     // One 16-byte load per lane (channel-major already), then a transpose into one register per
     // channel holding, per lane, the channel's bytes of the four texels (00, 10, 01, 11). (AVX2's
@@ -95,7 +103,8 @@ template <int N>
         const __m256i wb14 = _mm256_cvtps_epi32(__m256(beta[n] * kFootprintBetaScale));
         wb[n] = _mm256_or_si256(_mm256_slli_epi32(wb14, 16), _mm256_sub_epi32(_mm256_set1_epi32(kFootprintBetaOne), wb14));
     }
-    for (int c = 0; c < 4; ++c)
+    // Alpha first: the blend scales every channel by it, so its chain is the longest to the store.
+    for (const int c : {3, 0, 1, 2})
         for (int n = 0; n < N; ++n) {
             const __m256i bytes = channel[n][c];
             // t00, t01 as words: 1·t0 + 0·t1, one operation where a shift pair is two (commit a4281f8)
