@@ -45,6 +45,9 @@ CASES = {
     "unbounded_alloc": ("billboards", PARTICLES, "error", ["ran out of memory: "]),
     "fork_bomb": ("billboards", PARTICLES, "error", ["too many processes: "]),
     "snoop": ("billboards", set(), "pass", []),
+    # A file that does not compile is named as such, its first error's file and line first.
+    "compile_error": ("billboards", BILLBOARDS, "error", ["compile failed: billboards.cpp:32:", "error: ", "billboardSizes"]),
+    "link_error": ("billboards", BILLBOARDS, "error", ["link failed: ", "undefined reference to", "additiveFireBlend"]),
     "alternative": (("billboards", "particle-system", "sprite-methods"), set(), "pass", []),
     "age_offset": ("input-layout", PARTICLES, "fail", ["input assembler: ", "with AGE = ", "what the solution reads as LIFESPAN (is the element's AlignedByteOffset that field's offsetof?)"]),
     "colour_too_narrow": ("input-layout", PARTICLES, "fail", ["input assembler: ", "with COLOR = ", "the first 3 components and the defaults (0, 0, 0, 1) after them", "Format too narrow"]),
@@ -71,6 +74,8 @@ CASES = {
     "tree_faces_eye": ("sprite-methods", SPRITE_METHODS, "fail", ["vertex shader: ", "from the same input: its SV_Position is"]),
     "tree_eye_as_direction": ("sprite-methods", SPRITE_METHODS, "fail", ["vertex shader: ", "from the same input: its SV_Position is"]),
 }
+# Words a case's lost scenes must not say (a compile error is not the library's link).
+ABSENT = {"compile_error": ["link failed"], "link_error": ["compile failed"]}
 SCENES = {"billboards": BILLBOARDS, "input-layout": BILLBOARDS, "rasterizer": RASTERIZER,
           "particle-system": BILLBOARDS, "blending": BILLBOARDS, "sprite-methods": SPRITE_METHODS}
 
@@ -137,6 +142,9 @@ def check_case(raster, source, out, case, submission):
             for w in words:
                 if w not in t["output"]:
                     errors.append(f"{full_name}: the output lacks {w!r}:\n{t['output']}")
+            for w in ABSENT.get(case, []):
+                if w in t["output"]:
+                    errors.append(f"{full_name}: the output says {w!r}:\n{t['output']}")
         elif t["score"] != t["max_score"]:
             errors.append(f"{full_name}: lost ({status}, {t['score']} of {t['max_score']}) but should not:\n{t['output']}")
     if case == "snoop":
