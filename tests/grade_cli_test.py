@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""raster grade end to end (issue 32): grades one submission and checks its results.json.
+"""raster grade end to end (docs/GRADING.md): grades one submission and checks its results.json.
 
     grade_cli_test.py RASTER SOURCE_DIR WORK_DIR CASE
 
