@@ -96,6 +96,25 @@ bad --fov 0 render sprites --fov 0
 bad --fov 180 render sprites --fov 180
 bad --fov nan bench sprites --fov nan
 bad --time "" bench fire --time
+# The fog scenes' medium (--sigma, --source R,G,B or one number; --falloff B): each component a finite
+# float >= 0, else an error naming the option and what is wrong with the value, never a NaN picture.
+for command in "render fog-constant" "bench fog-height" "trace fog --stats" "view fog-black"; do
+  # shellcheck disable=SC2086
+  {
+    bad --sigma "--sigma: -1 is negative" $command --sigma -1
+    bad --sigma "--sigma: nan is not a number" $command --sigma 0.1,nan,0.1
+    bad --source "--source: inf is infinite" $command --source 0.1,0.1,inf
+    bad --falloff "--falloff: -0.5 is negative" $command --falloff -0.5
+  }
+done
+bad --sigma "--sigma: 1e+39 is too large for a float" render fog-constant --sigma 1e39
+bad --sigma "--sigma: 'x' is not a number" render fog-constant --sigma 0.1,x,0.1
+bad --sigma "--sigma: takes R,G,B (or one number for all three), not '0.1,0.2'" render fog --sigma 0.1,0.2
+bad --falloff "--falloff: takes one number, not '1,2,3'" render fog-height --falloff 1,2,3
+bad --source "" render media-closed-form --source
+# Accepted by the option, refused by the scene: q/sigma must be a finite float (the fog's colour).
+run 1 render fog-constant --sigma 1e-30 --source 1e9 --width 8 --height 8 --out-dir "$tmp/png"
+says "fog source 1e+09 over sigma 1e-30 (channel R) is not a finite float"
 bad --seed -1 bench fire --seed -1
 bad --frames "static" render fog --frames 2
 bad --list maybe render --list=maybe
@@ -174,7 +193,8 @@ helps() {
 }
 helps bench --width --height --fov --count --seed --cubes --fog --time --texture --frames --threads --out --reference --plain \
   --no-error --turbulence particles-sim
-helps render --out-dir --width --height --fov --count --seed --time --frames --fps --reference --plain --view --list
+helps render --out-dir --width --height --fov --count --seed --time --frames --fps --reference --plain --view --list \
+  --sigma --source --falloff
 helps trace --stats --pixel --json --draw --limit --width --height --fov --count --seed --cubes --fog --threads --reference --plain
 helps view --size --count --seed --cubes --fog --threads --reference --plain --headless --script --screenshot-dir \
   --screenshot-window --solution "keys:"
@@ -209,6 +229,10 @@ read -r max within <<<"$(sed 's/.*max_diff=\([0-9]*\) within_1=\(.*\)/\1 \2/' <<
 ((max <= 255)) || fail "max_diff $max is more than 255: $error"
 if ((max <= 1)); then [[ $within == 1.000000 ]] || fail "max_diff $max but not every pixel within 1: $error"; fi
 if ((max == 0)); then [[ $error == *mean_abs=0.0000* ]] || fail "max_diff 0 but a mean difference: $error"; fi
+# The fog figures with a medium of the command line's, sigma 0 in one channel included.
+run 0 render fog-constant fog-height media-closed-form --sigma 0.05,0,0.07 --source 0.03,0.004,0.05 --falloff 0 \
+  --width 48 --height 27 --cubes 2 --out-dir "$tmp/png"
+[[ $(png_size "$tmp/png/fog-height.png") == 48x27 ]] || fail "render fog-height with a medium wrote no picture"
 # The particle simulation alone: --count particles, all alive, stepped --frames times.
 run 0 bench particles-sim --count 5000 --frames 3 --threads 2 --turbulence
 grep -q '^threads=2 alive=5000 ' "$tmp/out" || fail "bench particles-sim printed: $(cat "$tmp/out")"

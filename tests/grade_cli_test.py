@@ -32,6 +32,10 @@ SIMULATED = "the vertex buffer holds another value (check what your code compute
 # tests/grader/root's sprite-methods scenes: every one draws the firs; all but no_sprites the sprites.
 SPRITE_METHODS = {"small_start", "no_sprites", "wide_fov"}
 SPRITES = {"small_start", "wide_fov"}
+# tests/grader/root's stable-fog scenes: the default media, sigma 0 in green, a level camera (dy = 0 on the
+# height fog's middle row), thin fog (sigma 1e-7) and a camera high above fog thinning upward, looking down.
+STABLE_FOG = {"small_start", "green_clear", "level_view", "thin_fog", "high_above"}
+NON_FINITE = ["pixel shader: ", "your pixel shader's output is NaN at (", "the scene's parameters:"]
 # case: (lab, scenes lost, verdict of those, words that must be in their output)
 CASES = {
     "wrong_blend": ("billboards", PARTICLES, "fail", ["blend: ", "your destination factor is Blend::InvSrcAlpha where the solution's is Blend::One"]),
@@ -48,7 +52,7 @@ CASES = {
     # A file that does not compile is named as such, its first error's file and line first.
     "compile_error": ("billboards", BILLBOARDS, "error", ["compile failed: billboards.cpp:32:", "error: ", "billboardSizes"]),
     "link_error": ("billboards", BILLBOARDS, "error", ["link failed: ", "undefined reference to", "additiveFireBlend"]),
-    "alternative": (("billboards", "particle-system", "sprite-methods"), set(), "pass", []),
+    "alternative": (("billboards", "particle-system", "sprite-methods", "stable-fog"), set(), "pass", []),
     "age_offset": ("input-layout", PARTICLES, "fail", ["input assembler: ", "with AGE = ", "what the solution reads as LIFESPAN (is the element's AlignedByteOffset that field's offsetof?)"]),
     "colour_too_narrow": ("input-layout", PARTICLES, "fail", ["input assembler: ", "with COLOR = ", "the first 3 components and the defaults (0, 0, 0, 1) after them", "Format too narrow"]),
     "library_layout": ("input-layout", PARTICLES, "error", ["failed: ", "element COLOR0 (feeding `colour`) at byte 36", "stride of 48 bytes"]),
@@ -73,11 +77,18 @@ CASES = {
     "gs_unscaled": ("sprite-methods", SPRITES, "fail", ["geometry shader: ", "geometry shader output", "differs by"]),
     "tree_faces_eye": ("sprite-methods", SPRITE_METHODS, "fail", ["vertex shader: ", "from the same input: its SV_Position is"]),
     "tree_eye_as_direction": ("sprite-methods", SPRITE_METHODS, "fail", ["vertex shader: ", "from the same input: its SV_Position is"]),
+    # stable-fog: each naive form loses the hidden medium it cannot take, named as a NaN where it is one.
+    "fog_direct": ("stable-fog", {"green_clear"}, "fail", NON_FINITE + ["--sigma 0.0500000007,0,0.0700000003"]),
+    "fog_sigma_floor": ("stable-fog", {"thin_fog"}, "fail", ["pixel shader: ", "your pixel shader returned"]),
+    "slide_exponent": ("stable-fog", STABLE_FOG, "fail", ["pixel shader: "]),
+    "no_sky": ("stable-fog", STABLE_FOG - {"high_above"}, "fail", ["pixel shader: ", "your pixel shader returned (0.000, 0.000, 0.000, 1.000)"]),
+    "naive_height": ("stable-fog", {"level_view", "high_above"}, "fail", NON_FINITE + ["--camera "]),
 }
 # Words a case's lost scenes must not say (a compile error is not the library's link).
 ABSENT = {"compile_error": ["link failed"], "link_error": ["compile failed"]}
 SCENES = {"billboards": BILLBOARDS, "input-layout": BILLBOARDS, "rasterizer": RASTERIZER,
-          "particle-system": BILLBOARDS, "blending": BILLBOARDS, "sprite-methods": SPRITE_METHODS}
+          "particle-system": BILLBOARDS, "blending": BILLBOARDS, "sprite-methods": SPRITE_METHODS,
+          "stable-fog": STABLE_FOG}
 
 
 def grade(raster, submission, out, extra, cwd):

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <fstream>
@@ -557,6 +558,82 @@ TEST(Labs, SpriteMethodsAsHandedOutDiffersFromTheSolution) {
     size_t grey = 0;
     EXPECT_GT(fringePixels(lab, &grey), 0u) << "the handed-out methods cannot agree";
     EXPECT_EQ(grey, 0u);
+}
+
+// ---- stable-fog: the lecture's four fog figures, in a form that stays finite -------------------------
+
+// The RGB bytes of pixel (x, y).
+std::array<int, 3> rgbAt(const RenderTarget& t, uint32_t x, uint32_t y) {
+    const uint8_t* p = t.rgba8() + 4 * (size_t(y) * t.width() + x);
+    return {p[0], p[1], p[2]};
+}
+void expectRgbNear(const std::array<int, 3>& got, const std::array<int, 3>& want, int tolerance,
+                   const std::string& what) {
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], want[c], tolerance) << what << ", channel " << c;
+}
+
+TEST(Labs, StableFogIsRegisteredWithItsSolution) {
+    EXPECT_EQ(solutionSceneOf("stable-fog"), "stable-fog@solution");
+    EXPECT_EQ(defaultCamera("stable-fog").eye, defaultCamera("fog-constant").eye);
+}
+
+// Panels (width / 2 × height / 2): constant fog, black fog; coloured fog, height fog. The skies are each
+// figure's limit at infinite distance, and the image is the same bits at 1, 2 and 8 threads.
+TEST(Labs, StableFogSolutionDrawsTheFourFiguresAtAnyThreadCount) {
+    const SceneOptions o{.width = 320, .height = 180, .cubes = 8};
+    const RenderTarget image = renderScene("stable-fog@solution", o, 1);
+    for (const unsigned threads : {2u, 8u})
+        EXPECT_EQ(differingPixels(image, renderScene("stable-fog@solution", o, threads)), 0u) << threads;
+    expectRgbNear(rgbAt(image, 80, 0), {153, 166, 191}, 1, "constant fog's sky, q/sigma");
+    expectRgbNear(rgbAt(image, 240, 0), {0, 0, 0}, 0, "black fog's sky");
+    expectRgbNear(rgbAt(image, 80, 90), {217, 140, 64}, 1, "coloured fog's sky");
+    EXPECT_LT(rgbAt(image, 240, 90)[2] + 40, rgbAt(image, 80, 0)[2]) << "height fog: less of it overhead";
+}
+
+// The hidden media of solutions/stable-fog/grading.json, where a naive formula gives NaN (black) or
+// loses the fog: the solution's pixels stay the limits they tend to.
+TEST(Labs, StableFogSolutionStaysFiniteOnTheAdversarialMedia) {
+    SceneOptions green{.width = 320, .height = 180, .cubes = 8};  // sigma 0 in green, q > 0: its sky q·inf
+    green.fogSigma = glm::vec3(0.05f, 0.0f, 0.07f), green.fogSource = glm::vec3(0.03f, 0.004f, 0.05f);
+    expectRgbNear(rgbAt(renderScene("stable-fog@solution", green), 80, 0), {153, 255, 182}, 1, "sigma 0 in green");
+    SceneOptions thin{.width = 320, .height = 180, .cubes = 8};  // the sky is q/sigma however thin the fog
+    thin.fogSigma = glm::vec3(1e-7f), thin.fogSource = glm::vec3(6e-8f, 6.5e-8f, 7.5e-8f);
+    expectRgbNear(rgbAt(renderScene("stable-fog@solution", thin), 80, 0), {153, 166, 191}, 1, "thin fog's sky");
+    // A level camera, panels 160 × 89: the height fog's middle row has dy = 0 exactly; it sees the sky,
+    // infinitely far through fog that does not thin along it: the fog's colour.
+    SceneOptions level{.width = 320, .height = 178, .cubes = 8};
+    level.camera = SceneCamera{{0, 1.2f, 6}, {0, 1.2f, -10}};
+    const RenderTarget level_image = renderScene("stable-fog@solution", level);
+    for (uint32_t x = 160; x < 320; x += 7)
+        expectRgbNear(rgbAt(level_image, x, 89 + 44), {153, 166, 191}, 2, "the level row, x " + std::to_string(x));
+    // High above fog thinning upward, looking down (e^{b·y0} = e^{-125} is 0 in float, e^{b·dy·s} up to
+    // e^{160} is inf): the ground under its fog, never black.
+    SceneOptions high{.width = 320, .height = 180, .cubes = 8};
+    high.fogSigma = glm::vec3(2.0f, 2.2f, 2.6f), high.fogSource = glm::vec3(1.2f, 1.43f, 1.95f);
+    high.fogFalloff = 5.0f, high.camera = SceneCamera{{0, 25, -10}, {0, 0, -16}};
+    const RenderTarget high_image = renderScene("stable-fog@solution", high);
+    size_t black = 0;
+    for (uint32_t y = 90; y < 180; ++y)
+        for (uint32_t x = 160; x < 320; ++x) {
+            const std::array<int, 3> p = rgbAt(high_image, x, y);
+            black += p[0] + p[1] + p[2] < 12;
+        }
+    EXPECT_EQ(black, 0u);
+}
+
+// As handed out: no fog and a black sky, the four panels the same world; visibly not the solution.
+// Skipped once a student has started on the file.
+TEST(Labs, StableFogAsHandedOutDiffersFromTheSolution) {
+    const std::string text = labText("labs/stable-fog/stable-fog.cpp");
+    for (const char* start : {"    (void)sigma, (void)tau;\n    return glm::vec3(1.0f);",
+                              "    (void)y0, (void)dy, (void)b;\n    return s;"})
+        if (text.find(start) == std::string::npos) GTEST_SKIP() << "the lab has been edited (no '" << start << "')";
+    const SceneOptions o{.width = 320, .height = 180, .cubes = 8};
+    const RenderTarget lab = renderScene("stable-fog", o);
+    expectRgbNear(rgbAt(lab, 80, 0), {0, 0, 0}, 0, "no sky");
+    EXPECT_EQ(differingPixels(panelPixels(lab, 0, 0, 160, 90), panelPixels(lab, 160, 90, 160, 90)), 0u)
+        << "no fog: every panel is the same world";
+    EXPECT_GT(differingPixels(lab, renderScene("stable-fog@solution", o)), size_t(320 * 180 / 2));
 }
 
 TEST(SceneRegistry, RefusesBadEntriesAndServesGoodOnes) {

@@ -305,6 +305,20 @@ TEST(PipelineDeterminism, FogIdenticalForAnyThreadCount) {
     }
 }
 
+// The lecture's fog figures and part 1's closed form (the latter through the teaching pipeline).
+TEST(PipelineDeterminism, FogFiguresIdenticalForAnyThreadCount) {
+    for (const char* name : {"fog-constant", "fog-black", "fog-coloured", "fog-height", "media-closed-form"}) {
+        const SceneOptions options{.width = 192, .height = 108, .cubes = 4};
+        const Frame one = renderScene(name, options, {.threads = 1});
+        for (const unsigned threads : {2u, 8u}) {
+            const Frame f = renderScene(name, options, {.threads = threads});
+            EXPECT_TRUE(f.color == one.color) << name << ", " << threads << " threads: "
+                                              << countDiffering(f.color, one.color) << " bytes differ";
+            EXPECT_TRUE(f.depth == one.depth) << name << ", " << threads << " threads";
+        }
+    }
+}
+
 TEST(PipelineDeterminism, RenderingTwiceWithOneContextGivesTheSameFrame) {
     const SceneOptions options{.width = 160, .height = 90, .count = 500};
     auto scene = makeScene("particles", options);

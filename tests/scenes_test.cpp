@@ -207,6 +207,105 @@ TEST(Scenes, ConstantFogSkyIsTheFogColour) {
     EXPECT_EQ(depth.load(80, 0), 1.0f);
 }
 
+// ---- The lecture's fog figures and part 1's closed form -----------------------------------------------
+
+RenderTarget renderFigure(const std::string& name, SceneOptions o) {
+    auto scene = makeScene(name, o);
+    Context ctx;
+    RenderTarget color(o.width, o.height);
+    DepthTarget depth(o.width, o.height);
+    scene->render(ctx, color, depth);
+    return color;
+}
+
+void expectNear(const std::array<int, 4>& pixel, const std::array<int, 3>& rgb, int tolerance, const char* what) {
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(pixel[c], rgb[c], tolerance) << what << ", channel " << c;
+}
+
+// The sky at infinite distance: the fog's colour q/σ (constant, coloured), black without a source
+// (black fog), darker overhead than at the horizon in fog that thins upward (height).
+TEST(FogFigures, EachSkyIsTheFiguresLimitAtInfiniteDistance) {
+    const SceneOptions o{.width = 160, .height = 90, .cubes = 4};
+    const RenderTarget constant = renderFigure("fog-constant", o), black = renderFigure("fog-black", o);
+    const RenderTarget coloured = renderFigure("fog-coloured", o), height = renderFigure("fog-height", o);
+    expectNear(pixelBytes(constant, 80, 0), {153, 166, 191}, 1, "constant fog: q/sigma = (0.6, 0.65, 0.75)");
+    expectNear(pixelBytes(coloured, 80, 0), {217, 140, 64}, 1, "coloured fog: (0.85, 0.55, 0.25)");
+    for (uint32_t x = 0; x < 160; ++x) EXPECT_EQ(pixelBytes(black, x, 0), (std::array<int, 4>{0, 0, 0, 255}));
+    const std::array<int, 4> zenith = pixelBytes(height, 80, 0), horizon = pixelBytes(height, 80, 30);
+    EXPECT_LT(zenith[2] + 40, horizon[2]) << "height fog thins upward: less of it overhead";
+    // Coloured fog hides the background: the farther half of the lattice is within 6 steps of the sky.
+    int hidden = 0, row = 0;
+    for (uint32_t y = 0; y < 90; ++y) {
+        const std::array<int, 4> p = pixelBytes(coloured, 80, y);
+        if (std::abs(p[0] - 217) + std::abs(p[1] - 140) + std::abs(p[2] - 64) <= 6) hidden += 1, row = int(y);
+    }
+    EXPECT_GT(row, 30) << "the fog's colour reaches below the horizon: the far ground is hidden";
+    EXPECT_GT(hidden, 30);
+}
+
+TEST(FogFigures, TheOptionsReplaceTheMediumAndUnsetLeaveTheBenchmarkAsItWas) {
+    SceneOptions clear{.width = 160, .height = 90, .cubes = 4};
+    clear.fogSigma = glm::vec3(0.0f), clear.fogSource = glm::vec3(0.0f);
+    const RenderTarget none = renderFigure("fog-constant", clear);
+    EXPECT_EQ(pixelBytes(none, 80, 0), (std::array<int, 4>{0, 0, 0, 255})) << "no medium: the sky is black";
+    // The benchmark's own medium given explicitly draws the same bits as none given.
+    const shaders::FogMedium own;
+    SceneOptions explicit_medium{.width = 160, .height = 90, .cubes = 4};
+    explicit_medium.fogSigma = own.sigma, explicit_medium.fogSource = own.q, explicit_medium.fogFalloff = -own.b;
+    EXPECT_TRUE(renderFigure("fog", explicit_medium) == renderFigure("fog", {.width = 160, .height = 90, .cubes = 4}));
+    // A channel without extinction but with a source: its sky is q·∞, white, and finite elsewhere.
+    SceneOptions green{.width = 160, .height = 90, .cubes = 4};
+    green.fogSigma = glm::vec3(0.05f, 0.0f, 0.07f), green.fogSource = glm::vec3(0.03f, 0.004f, 0.05f);
+    const RenderTarget g = renderFigure("fog-height", green);
+    EXPECT_EQ(pixelBytes(g, 80, 40)[1] > 0, true);
+    EXPECT_EQ(pixelBytes(renderFigure("fog-constant", green), 80, 0)[1], 255);
+}
+
+TEST(FogFigures, MakeSceneNamesABadMedium) {
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    for (const char* name : {"fog", "fog-height", "media-closed-form"}) {
+        SceneOptions o{.width = 8, .height = 8, .cubes = 1};
+        o.fogSigma = glm::vec3(0.1f, -1.0f, 0.1f);
+        expectInvalidArgument([&] { makeScene(name, o); }, "fog sigma G: -1 is negative");
+        o.fogSigma = glm::vec3(nan, 0.1f, 0.1f);
+        expectInvalidArgument([&] { makeScene(name, o); }, "fog sigma R: nan is not a number");
+        o.fogSigma.reset();
+        o.fogSource = glm::vec3(0.1f, 0.1f, kInf);
+        expectInvalidArgument([&] { makeScene(name, o); }, "fog source B: inf is infinite");
+        o.fogSource.reset();
+        o.fogFalloff = -0.5f;
+        expectInvalidArgument([&] { makeScene(name, o); }, "fog falloff: -0.5 is negative");
+        o.fogFalloff.reset();
+        o.fogSigma = glm::vec3(1e-40f, 0.1f, 0.1f), o.fogSource = glm::vec3(1.0f);
+        expectInvalidArgument([&] { makeScene(name, o); }, "is not a finite float");
+    }
+    EXPECT_EQ(fogValueProblem(1e39), "1e+39 is too large for a float");
+    EXPECT_EQ(fogValueProblem(0.0), "");
+}
+
+// Three panels of the same world and box: absorption only darkens what is behind the box, emission
+// only brightens it, both tend to the medium's colour q/μ; outside the box the panels are the same.
+TEST(MediaClosedForm, AbsorptionDarkensEmissionBrightensBothTendToTheColour) {
+    const SceneOptions o{.width = 480, .height = 270, .cubes = 4};
+    const RenderTarget image = renderFigure("media-closed-form", o);
+    const auto sum = [&](uint32_t panel, uint32_t x, uint32_t y) {
+        const std::array<int, 4> p = pixelBytes(image, 160 * panel + x, y);
+        return p[0] + p[1] + p[2];
+    };
+    // The box's middle (the default camera looks at its centre) and a corner of the sky.
+    EXPECT_LT(sum(0, 80, 150), sum(1, 80, 150) - 150);
+    EXPECT_EQ(sum(0, 2, 2), sum(1, 2, 2));
+    EXPECT_EQ(sum(1, 2, 2), sum(2, 2, 2));
+    EXPECT_NE(sum(2, 80, 150), sum(0, 80, 150));
+    SceneOptions clear = o;
+    clear.fogSigma = glm::vec3(0.0f), clear.fogSource = glm::vec3(0.0f);
+    const RenderTarget world = renderFigure("media-closed-form", clear);
+    const std::array<int, 4> behind = pixelBytes(world, 80, 150);
+    EXPECT_LT(sum(0, 80, 150), behind[0] + behind[1] + behind[2] - 100) << "absorption takes light away";
+    EXPECT_GT(sum(1, 80, 150), behind[0] + behind[1] + behind[2] + 100) << "emission adds light";
+    EXPECT_TRUE(pixelBytes(world, 80, 150) == pixelBytes(world, 160 + 80, 150)) << "no medium: the panels agree";
+}
+
 // ---- The fog medium -----------------------------------------------------------------------------------
 
 // τ(s) = ∫0^s e^{b(y0 + dy·t)} dt by the midpoint rule with 10^5 steps, in double.

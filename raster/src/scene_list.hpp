@@ -5,6 +5,8 @@
 #pragma once
 
 #include <memory>
+#include <string_view>
+#include <vector>
 
 #include "raster/scenes.hpp"
 
@@ -34,6 +36,12 @@ inline SceneOptions occluderOnly(const SceneOptions& o, const SceneCamera& camer
 // Options already checked by makeScene.
 std::unique_ptr<Scene> makeParticlesScene(const SceneOptions& options);
 std::unique_ptr<Scene> makeFogScene(const SceneOptions& options);
+// The lecture's fog figures (scene_fog.cpp): fog-constant, fog-black, fog-coloured, fog-height, from
+// kFogCamera; and part 1's closed form in three panels (scene_media.cpp), from kMediaCamera.
+std::vector<std::string_view> fogFigureNames();
+std::unique_ptr<Scene> makeFogFigureScene(std::string_view name, const SceneOptions& options);
+constexpr SceneCamera kMediaCamera{{-2.0f, 2.4f, 5.6f}, {0.0f, 0.9f, 0.2f}};
+std::unique_ptr<Scene> makeMediaClosedFormScene(const SceneOptions& options);
 std::unique_ptr<Scene> makeFireScene(const SceneOptions& options);
 std::unique_ptr<Scene> makeSmokeScene(const SceneOptions& options);  // scene_smoke.cpp
 std::unique_ptr<Scene> makeSpritesScene(const SceneOptions& options);

@@ -31,6 +31,16 @@ std::string secondsText(double seconds) {
 
 }  // namespace
 
+std::string fogValueProblem(double value) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%g", value);
+    if (std::isnan(value)) return std::string(text) + " is not a number";
+    if (std::isinf(value)) return std::string(text) + " is infinite";
+    if (value < 0.0) return std::string(text) + " is negative";
+    if (!std::isfinite(float(value))) return std::string(text) + " is too large for a float";
+    return "";
+}
+
 void Scene::advance(double seconds) {
     RASTER_REQUIRE(std::isfinite(seconds) && seconds >= 0.0, InvalidArgument,
                    "scene '" + std::string(name()) + "': advance by " + secondsText(seconds) +
@@ -70,10 +80,47 @@ std::unique_ptr<Scene> makeNamed(std::string_view, const SceneOptions& options) 
     return make(options);
 }
 
-std::unique_ptr<Scene> makeFogChecked(std::string_view, const SceneOptions& options) {
+void requireCubes(const SceneOptions& options) {
     RASTER_REQUIRE(options.cubes <= 1024, InvalidArgument,
                    "cube count " + std::to_string(options.cubes) + " per side is above 1024");
+}
+std::unique_ptr<Scene> makeFogChecked(std::string_view, const SceneOptions& options) {
+    requireCubes(options);
     return makeFogScene(options);
+}
+std::unique_ptr<Scene> makeFogFigureChecked(std::string_view name, const SceneOptions& options) {
+    requireCubes(options);
+    return makeFogFigureScene(name, options);
+}
+std::unique_ptr<Scene> makeMediaChecked(std::string_view, const SceneOptions& options) {
+    requireCubes(options);
+    return makeMediaClosedFormScene(options);
+}
+
+// The options' medium: every component a finite float >= 0, and q/σ finite where σ > 0 (the fog's
+// colour seen to infinity; FogMedium's domain).
+void requireFogMedium(const SceneOptions& o) {
+    const auto check = [](const char* what, const glm::vec3& v) {
+        for (int c = 0; c < 3; ++c) {
+            const std::string problem = fogValueProblem(v[c]);
+            RASTER_REQUIRE(problem.empty(), InvalidArgument,
+                           std::string("fog ") + what + " " + "RGB"[c] + ": " + problem);
+        }
+    };
+    if (o.fogSigma) check("sigma", *o.fogSigma);
+    if (o.fogSource) check("source", *o.fogSource);
+    if (o.fogFalloff) {
+        const std::string problem = fogValueProblem(*o.fogFalloff);
+        RASTER_REQUIRE(problem.empty(), InvalidArgument, "fog falloff: " + problem);
+    }
+    if (o.fogSigma && o.fogSource)
+        for (int c = 0; c < 3; ++c) {
+            const float sigma = (*o.fogSigma)[c], q = (*o.fogSource)[c];
+            char text[160];
+            std::snprintf(text, sizeof text, "fog source %g over sigma %g (channel %c) is not a finite float",
+                          double(q), double(sigma), "RGB"[c]);
+            RASTER_REQUIRE(sigma == 0.0f || std::isfinite(q / sigma), InvalidArgument, text);
+        }
 }
 
 const std::vector<BuiltinScene>& builtinScenes() {
@@ -86,6 +133,8 @@ const std::vector<BuiltinScene>& builtinScenes() {
             {"particles", kParticlesCamera, makeNamed<makeParticlesScene>},
             {"fog", kFogCamera, makeFogChecked},
         };
+        for (std::string_view name : fogFigureNames()) list.push_back({name, kFogCamera, makeFogFigureChecked});
+        list.push_back({"media-closed-form", kMediaCamera, makeMediaChecked});
         for (std::string_view name : blendingSceneNames())
             list.push_back({name, kBlendCamera, makeBlendingScene});
         return list;
@@ -187,6 +236,7 @@ std::unique_ptr<Scene> makeScene(std::string_view name, const SceneOptions& opti
         RASTER_REQUIRE(*options.count <= 50'000'000, InvalidArgument,
                        "particle count " + std::to_string(*options.count) + " is above 50000000");
     }
+    requireFogMedium(options);
     if (const BuiltinScene* builtin = findBuiltinScene(name)) {
         std::unique_ptr<Scene> scene = builtin->make(name, options);
         RASTER_CHECK(scene && scene->name() == name);

@@ -11,6 +11,7 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -166,7 +167,70 @@ inline void addSizeOptions(CLI::App& command, SceneOptions& options) {
         "the vertical field of view in degrees (60); wide angles show the sprites' edge effects");
 }
 
-// --count, --seed, --cubes, --fog: what the lecture's scenes and the labs hold (bench, trace, view).
+// A fog parameter's components: "R,G,B" (count 3) or "B" (count 1), decimal numbers each a finite
+// float >= 0 (fogValueProblem), into out. Returns "" or what is wrong: "-1 is negative", "'x' is not a
+// number", "takes R,G,B: three numbers separated by commas, not '1,2'".
+inline std::string readFogValues(const std::string& text, size_t count, float* out) {
+    std::vector<std::string> parts(1);
+    for (const char c : text) {
+        if (c == ',')
+            parts.emplace_back();
+        else
+            parts.back().push_back(c);
+    }
+    if (parts.size() != count && !(count == 3 && parts.size() == 1))
+        return count == 3 ? "takes R,G,B (or one number for all three), not '" + text + "'"
+                          : "takes one number, not '" + text + "'";
+    for (size_t i = 0; i < count; ++i) {
+        const std::string& part = parts[parts.size() == 1 ? 0 : i];
+        double value = 0.0;
+        size_t used = 0;
+        try {
+            value = std::stod(part, &used);
+        } catch (const std::out_of_range&) {
+            return "'" + part + "' is too large for a float";
+        } catch (const std::exception&) {
+            used = 0;
+        }
+        if (used == 0 || used != part.size() || part.find_first_of(" \t") != std::string::npos)
+            return "'" + part + "' is not a number";
+        if (const std::string problem = fogValueProblem(value); !problem.empty()) return problem;
+        out[i] = float(value);
+    }
+    return "";
+}
+
+// --sigma R,G,B, --source R,G,B, --falloff B: the fog scenes' and the fog lab's medium (SceneOptions).
+inline void addFogMediumOptions(CLI::App& command, SceneOptions& options) {
+    const auto add = [&](const std::string& name, size_t count, std::function<void(const float*)> set,
+                         const std::string& help) {
+        command
+            .add_option_function<std::string>(
+                name,
+                [count, set](const std::string& text) {
+                    float v[3] = {};
+                    readFogValues(text, count, v);
+                    set(v);
+                },
+                help)
+            ->check(CLI::Validator(
+                [count](std::string& text) {
+                    float v[3] = {};
+                    return readFogValues(text, count, v);
+                },
+                ""))
+            ->type_name(count == 3 ? "R,G,B" : "B");
+    };
+    add("--sigma", 3, [&options](const float* v) { options.fogSigma = glm::vec3(v[0], v[1], v[2]); },
+        "fog scenes: the extinction sigma per metre, R,G,B or one number (each >= 0)");
+    add("--source", 3, [&options](const float* v) { options.fogSource = glm::vec3(v[0], v[1], v[2]); },
+        "fog scenes: the source term q per metre, R,G,B or one number; the fog's colour is q/sigma");
+    add("--falloff", 1, [&options](const float* v) { options.fogFalloff = v[0]; },
+        "height fog: its density falls as e^(-B*y), B >= 0 per metre");
+}
+
+// --count, --seed, --cubes, --fog, --sigma, --source, --falloff: what the lecture's scenes and the
+// labs hold (bench, render, trace, view).
 inline void addContentOptions(CLI::App& command, SceneOptions& options) {
     addOptionalWholeNumber(command, "--count", options.count, 0, 50'000'000,
                            "particles: the number of billboards (10000); fire: the particle slots (4000)");
@@ -179,6 +243,7 @@ inline void addContentOptions(CLI::App& command, SceneOptions& options) {
             "fog: the fog model")
         ->check(CLI::IsMember({"constant", "height"}))
         ->default_str(options.heightFog ? "height" : "constant");
+    addFogMediumOptions(command, options);
 }
 
 // --time T: an animated scene's start time (bench, render). Static scenes ignore it.

@@ -47,11 +47,25 @@ const char* blendFigureTitle(const std::string& name) {
     return it == titles.end() ? nullptr : it->second;
 }
 
+// The lecture's fog figures (src/scene_fog.cpp, src/scene_media.cpp); --sigma, --source and --falloff
+// change their medium.
+const char* fogFigureTitle(const std::string& name) {
+    static const std::map<std::string, const char*> titles = {
+        {"fog-constant", "fog figure: constant fog, L0*e^(-sigma*s) + (q/sigma)*(1 - e^(-sigma*s)), the sky at s = inf"},
+        {"fog-black", "fog figure: \"zero source term, black fog\" (q = 0): everything fades to black"},
+        {"fog-coloured", "fog figure: coloured fog that hides the background (its colour q/sigma)"},
+        {"fog-height", "fog figure: exponential height fog, denser below (--falloff B)"},
+        {"media-closed-form", "a box of medium before the world: absorption, emission, both (--sigma, --source)"}};
+    const auto it = titles.find(name);
+    return it == titles.end() ? nullptr : it->second;
+}
+
 // --list: each scene's name and what it is.
 void listScenes() {
     for (const std::string& name : sceneNames()) {
         const SceneEntry* entry = findRegisteredScene(name);
         const char* figure = blendFigureTitle(name);
+        if (!figure) figure = fogFigureTitle(name);
         const char* title = name == "fire"        ? "the lecture's fire over the occluder, animated (a particle system)"
                             : name == "smoke"     ? "grey smoke blended over, sorted and soft against a box (animated)"
                             : name == "sprites"

@@ -2,7 +2,9 @@
 // lecture's three ways of drawing a sprite, animated) and `forest` (axis billboards and billboard
 // clouds, alpha tested, animated), and the two
 // that ../shared/bench/SCENES.md defines to the last constant, `particles` (fire billboards over an
-// occluder) and `fog` (cubes on a ground plane in fog); the lecture's blend and depth figures,
+// occluder) and `fog` (cubes on a ground plane in fog); the lecture's fog figures `fog-constant`,
+// `fog-black`, `fog-coloured`, `fog-height` and part 1's `media-closed-form` (src/scene_fog.cpp,
+// src/scene_media.cpp); the lecture's blend and depth figures,
 // `blend-additive`, `blend-depthwrite`, `blend-nodepth`, `blend-unsorted`, `blend-sorted` and
 // `blend-wboit` (src/scene_blending.cpp, docs/BLENDING.md); and the labs' scenes: each lab (labs/<name>/, see raster/lab.hpp) registers `<name>`, its solution
 // (solutions/<name>/) `<name>@solution`.
@@ -51,7 +53,19 @@ struct SceneOptions {
     // Overrides the scene's camera. Unset, the scene is exactly SCENES.md's (what `raster bench`
     // measures); set to defaultCamera(name), it renders the same image bit for bit.
     std::optional<SceneCamera> camera;
+    // The fog scenes (fog, fog-*, media-closed-form) and the fog lab: the medium, replacing the scene's
+    // own. fogSigma: the extinction σ, per metre, RGB; fogSource: the source term q, radiance per metre,
+    // RGB (the fog's colour seen to infinity is q/σ); fogFalloff: the height fog's falloff B, per metre,
+    // its density e^{−B·y} (the lecture's σ(y) = σ0·e^{b·y} with b = −B). Each component finite and
+    // ≥ 0 (fogValueProblem), and q/σ a finite float where σ > 0; else makeScene's Error names it.
+    std::optional<glm::vec3> fogSigma, fogSource;
+    std::optional<float> fogFalloff;
 };
+
+// What is wrong with one component of a fog parameter (σ, q or the falloff B), "" when nothing: each is
+// a finite float ≥ 0. "nan is not a number", "inf is infinite", "1e+39 is too large for a float",
+// "-1 is negative" (the value as %g prints it).
+std::string fogValueProblem(double value);
 
 constexpr uint32_t kDefaultParticleCount = 10000;
 constexpr uint32_t kDefaultFireCount = 4000;
@@ -139,6 +153,24 @@ struct ParticleSceneData {
     VertexBuffer occluder, particles;
     InputLayout layout;
     uint32_t count;
+};
+
+// The fog figures' world (fog-constant, fog-black, fog-coloured, fog-height, media-closed-form and the fog
+// lab), SCENES.md's fog scene made recognisable: its ground (x in [−40, 40], z in [−80, 8], y = 0) as a
+// checkerboard of 2 m tiles and its lattice of `cubes` × `cubes` cubes (half-extent 0.5, centres
+// ((ix − (cubes − 1)/2)·4, 0.5, −4·iz − 2)) in four colours. One vertex buffer of lit vertices, POSITION
+// and NORMAL R32G32B32_FLOAT each (`layout`, 24 bytes a vertex, triangle lists, flat normals), drawn part
+// by part with each part's albedo; and the sky, one full-screen triangle of POSITION R32G32_FLOAT
+// (`skyLayout`, clip-space x and y) for a pixel shader that looks through the medium to s = ∞.
+struct FogWorldData {
+    explicit FogWorldData(uint32_t cubes);
+    struct Part {
+        uint32_t first, count;  // vertices of `lit`
+        glm::vec3 albedo;
+    };
+    std::vector<Part> parts;  // the light tiles, the dark tiles, then the cubes colour by colour
+    VertexBuffer lit, sky;
+    InputLayout layout, skyLayout;
 };
 
 // The rasterizer lab's adversarial triangles (labs/rasterizer/README.md), one TriangleList of

@@ -41,6 +41,7 @@ const TraceDraw* findDraw(const Trace& trace, uint32_t draw) {
 struct Found {
     DiagnosisStage stage;
     std::string text;
+    bool nonFinite = false;  // Diagnosis::nonFiniteOutput
 };
 
 std::string blendName(Blend b) {
@@ -440,6 +441,30 @@ std::optional<Found> depthDifference(const TraceFragment& a, const TraceFragment
     return std::nullopt;
 }
 
+// Your shaded fragment's output holds a NaN or an infinity where the solution's holds something else:
+// named as such (a UNORM target stores NaN as 0 and ∞ as 1, so the picture alone shows only black or
+// white), the channels that are, and where such values come from.
+std::optional<Found> nonFiniteOutput(const TraceFragment& a, const TraceFragment& b) {
+    if (!a.shaded || a.fate == FragmentFate::Discarded) return std::nullopt;
+    static const char* const kChannels[4] = {"red", "green", "blue", "alpha"};
+    std::string channels;
+    bool nan = false;
+    for (int c = 0; c < 4; ++c) {
+        const float v = a.shaderOutput[c];
+        if (std::isfinite(v) || same(v, b.shaderOutput[c])) continue;
+        nan = nan || std::isnan(v);
+        channels += std::string(channels.empty() ? "" : ", ") + kChannels[c] + " " +
+                    (std::isnan(v) ? "NaN" : v > 0 ? "+inf" : "-inf");
+    }
+    if (channels.empty()) return std::nullopt;
+    return Found{DiagnosisStage::PixelShader,
+                 fmt("your pixel shader's output is %s at (%d, %d): ", nan ? "NaN" : "infinite", a.x, a.y) +
+                     colour(a.shaderOutput) + " (" + channels + "), the solution's " + colour(b.shaderOutput) +
+                     ": a 0/0, 0*inf, inf-inf or inf/inf on the way (a division by a value that can be 0, or "
+                     "an underflow to 0 times an overflow to inf)",
+                 true};
+}
+
 std::optional<Found> fragmentDifference(const TraceFragment& a, const TraceFragment& b,
                                         const std::vector<std::string>& blend_differences) {
     if (!same(a.colorBefore, b.colorBefore))
@@ -453,9 +478,11 @@ std::optional<Found> fragmentDifference(const TraceFragment& a, const TraceFragm
         return Found{DiagnosisStage::PixelShader,
                      std::string("your pixel shader ") + (a_discarded ? "discarded" : "kept") +
                          " the fragment, the solution's " + (b_discarded ? "discarded it" : "kept it")};
-    if (!same(a.shaderOutput, b.shaderOutput))
+    if (!same(a.shaderOutput, b.shaderOutput)) {
+        if (auto found = nonFiniteOutput(a, b)) return found;
         return Found{DiagnosisStage::PixelShader, "your pixel shader returned " + colour(a.shaderOutput) +
                                                       ", the solution's " + colour(b.shaderOutput)};
+    }
     if (!same(a.colorAfter, b.colorAfter)) {
         std::string text = "the output merger made " + colour(a.shaderOutput) + " over " +
                            colour(a.colorBefore) + " gives " + colour(a.colorAfter) + " in yours, " +
@@ -904,6 +931,7 @@ Diagnosis diagnosePixel(const Trace& submission, const Trace& solution, int32_t 
                 pairDifference(submission, solution, pair, alignment.byVertices);
             if (!found) continue;
             d.stage = found->stage;
+            d.nonFiniteOutput = found->nonFinite;
             d.headline = where(x, y, pair) + found->text;
             d.details = drawStateDifferences(submission, solution, pair.draw);
             break;

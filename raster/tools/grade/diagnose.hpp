@@ -32,7 +32,8 @@
 //      primitive's own (recorded vertices; else vertex p of a point list's primitive p), then every recorded
 //      one in order while both fetched the same vertex.
 //   3. the fragment's depth test and depth write (DepthTest)
-//   4. the pixel shader's output (PixelShader)
+//   4. the pixel shader's output (PixelShader); a NaN or an infinity where the solution's has none is
+//      named as such ("your pixel shader's output is NaN at (x, y): ...")
 //   5. the colour after the output merger, given the same shader output and colour before (Blend)
 // Positions are compared exactly (the solution against itself is bit-exact at any thread count): a
 // different order of a strip's corners reads as a geometry difference, but then the images agree and
@@ -70,6 +71,9 @@ struct Diagnosis {
     DiagnosisStage stage = DiagnosisStage::None;
     std::string headline;              // one line: where, which stage, yours against the solution's
     std::vector<std::string> details;  // the state differences of the draws involved, then figures
+    // The stage is PixelShader and your output holds a NaN or an infinity where the solution's does not:
+    // "your pixel shader's output is NaN at (x, y): ..." (the grader adds the scene's parameters).
+    bool nonFiniteOutput = false;
 };
 
 Diagnosis diagnosePixel(const Trace& submission, const Trace& solution, int32_t x, int32_t y);

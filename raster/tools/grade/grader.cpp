@@ -219,6 +219,10 @@ void diagnoseScene(SceneResult& result, const LabBuild& build, const std::string
         renderExpected(lab, scene.options, &theirs);
         const Diagnosis d = diagnosePixel(yours, theirs, int32_t(region.x), int32_t(region.y));
         result.diagnosis = std::string(stageName(d.stage)) + ": " + d.headline;
+        if (d.nonFiniteOutput) {  // the parameters that led there (a lab's hidden ones included)
+            result.diagnosis += "; the scene's parameters:";
+            for (const std::string& arg : runnerOptionArgs(scene.options)) result.diagnosis += " " + arg;
+        }
         for (const std::string& line : d.details) result.explanation += "\n" + line;
     } catch (const Error& e) {
         result.diagnosis = std::string("no diagnosis: ") + e.what();

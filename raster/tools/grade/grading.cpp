@@ -47,7 +47,8 @@ struct FieldReader {
     }
 
     SceneOptions options(const Json& j) const {
-        onlyKnown(j, {"width", "height", "count", "seed", "cubes", "fog", "camera", "time", "fov"});
+        onlyKnown(j, {"width", "height", "count", "seed", "cubes", "fog", "camera", "time", "fov", "sigma",
+                      "source", "falloff"});
         SceneOptions o;
         if (j.contains("width")) o.width = whole(j["width"], "width", 1, 8192);
         if (j.contains("height")) o.height = whole(j["height"], "height", 1, 8192);
@@ -79,7 +80,26 @@ struct FieldReader {
                 fail("\"fov\" must be a number of degrees in (0, 179], not " + j["fov"].dump());
             o.fovDegrees = j["fov"].get<float>();
         }
+        if (j.contains("sigma")) o.fogSigma = fogValues(j["sigma"], "sigma");
+        if (j.contains("source")) o.fogSource = fogValues(j["source"], "source");
+        if (j.contains("falloff")) o.fogFalloff = fogValue(j["falloff"], "\"falloff\"");
         return o;
+    }
+    // A fog parameter's component, named `what` in messages: a number, finite and >= 0 as a float
+    // (fogValueProblem).
+    float fogValue(const Json& j, const std::string& what) const {
+        if (!j.is_number()) fail(what + " must be a number, not " + j.dump());
+        const std::string problem = fogValueProblem(j.get<double>());
+        if (!problem.empty()) fail(what + ": " + problem);
+        return j.get<float>();
+    }
+    // σ or q: 3 such numbers, R, G, B.
+    glm::vec3 fogValues(const Json& j, const char* field) const {
+        if (!j.is_array() || j.size() != 3)
+            fail(std::string("\"") + field + "\" must be 3 numbers (R, G, B), not " + j.dump());
+        glm::vec3 v;
+        for (int c = 0; c < 3; ++c) v[c] = fogValue(j[c], std::string("\"") + field + "\" " + "RGB"[c]);
+        return v;
     }
 
     GradedScene scene(const Json& j, bool is_public) const {
@@ -178,6 +198,18 @@ std::vector<std::string> runnerOptionArgs(const SceneOptions& o) {
                       o.camera->target.z);
         args.insert(args.end(), {"--camera", camera});
     }
+    const auto floats = [](const float* v, int n) {  // every bit of each float, comma-separated
+        std::string text;
+        for (int i = 0; i < n; ++i) {
+            char number[32];
+            std::snprintf(number, sizeof number, "%s%.9g", i ? "," : "", double(v[i]));
+            text += number;
+        }
+        return text;
+    };
+    if (o.fogSigma) args.insert(args.end(), {"--sigma", floats(&o.fogSigma->x, 3)});
+    if (o.fogSource) args.insert(args.end(), {"--source", floats(&o.fogSource->x, 3)});
+    if (o.fogFalloff) args.insert(args.end(), {"--falloff", floats(&*o.fogFalloff, 1)});
     if (o.fovDegrees) {
         char fov[32];
         std::snprintf(fov, sizeof fov, "%.9g", double(*o.fovDegrees));  // every bit of the float

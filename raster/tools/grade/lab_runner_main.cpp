@@ -5,7 +5,7 @@
 //
 //   lab_runner --scene billboards --out scene.png --width 320 --height 180 --count 500
 //              [--camera EX,EY,EZ,TX,TY,TZ] [--seed N] [--cubes N] [--fog constant|height] [--time T]
-//              [--fov DEGREES] [--threads N]
+//              [--fov DEGREES] [--sigma R,G,B] [--source R,G,B] [--falloff B] [--threads N]
 //              [--path fast|plain|reference] [--pixel X,Y --history FILE]
 //
 // Exit status 0 when the image was written; 1 with a message on stderr for anything else (an option it
@@ -106,6 +106,16 @@ RunnerArgs parseArgs(int argc, char** argv) {
             RASTER_REQUIRE(fov > 0.0f && fov <= 179.0f, InvalidArgument,
                            option + ": '" + value + "' is not a field of view in (0, 179] degrees");
             a.options.fovDegrees = fov;
+        } else if (option == "--sigma" || option == "--source" || option == "--falloff") {
+            const bool rgb = option != "--falloff";
+            const std::vector<float> v = numbers(option, value, rgb ? 3 : 1);
+            for (const float x : v) {
+                const std::string problem = raster::fogValueProblem(x);
+                RASTER_REQUIRE(problem.empty(), InvalidArgument, option + ": " + problem);
+            }
+            if (option == "--sigma") a.options.fogSigma = glm::vec3(v[0], v[1], v[2]);
+            if (option == "--source") a.options.fogSource = glm::vec3(v[0], v[1], v[2]);
+            if (option == "--falloff") a.options.fogFalloff = v[0];
         } else if (option == "--pixel") {
             const std::vector<float> v = numbers(option, value, 2);
             a.pixel = true, a.px = int32_t(v[0]), a.py = int32_t(v[1]);
