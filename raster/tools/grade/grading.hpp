@@ -17,7 +17,8 @@
 // name: [a-z0-9_-], unique within the lab (it names the PNGs); number: Gradescope's test number,
 // "1.1"; points: > 0; options: raster::SceneOptions overrides (width, height, count, seed, cubes, fog
 // "constant"|"height", camera {eye, target}, time: an animated lab's clock in seconds, [0, 600], fov
-// the vertical field of view in degrees), every one optional, unset ones keep SceneOptions' defaults
+// the vertical field of view in degrees, sigma and source [R, G, B] and falloff: the fog scenes' medium,
+// each component a finite number >= 0), every one optional, unset ones keep SceneOptions' defaults
 // (camera unset: the lab's registered camera; time unset: the lab's own start); comparison: what raster::Comparison::parse
 // reads. Unknown fields are errors (a misspelt "ponts" must not grade a scene for 0 points).
 //
