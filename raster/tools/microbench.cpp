@@ -9,6 +9,7 @@
 //   Sample     Texture2D::Sample / SampleLevel                                          items = samples
 //   Scene      whole frames of the two benchmark scenes at 1280×720                   items = frames
 //   Particles  simulation steps, upload and depth sorts of 10^6 particles (microbench_particles.cpp)
+//   Media      phase functions and ψ, float against Float8, per value (microbench_media.cpp)
 // A program of its own, build/bin/raster-microbench, that `raster microbench` runs (microbench_command.cpp):
 // its two full-screen draws instantiate the pipeline twice, a third of the time `raster` alone takes to
 // compile, so the README's first command, which builds `raster`, does not build it. All data is made
@@ -37,6 +38,7 @@
 
 namespace raster::tools {
 
+void registerMediaBenchmarks();     // microbench_media.cpp
 void registerParticleBenchmarks();  // microbench_particles.cpp
 
 namespace {
@@ -481,6 +483,7 @@ void registerAll() {
     RegisterBenchmark("Scene/fog_1280x720_16x16", BM_SceneFog)
         ->ArgName("threads")->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
     registerParticleBenchmarks();
+    registerMediaBenchmarks();
 }
 
 // args: the command line after "microbench", for Google Benchmark, which wants a program name first.

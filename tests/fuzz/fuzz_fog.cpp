@@ -25,18 +25,39 @@
 //    where e^{b·y0} is a normal float (|b·y0| ≤ 87) and 1e-30 ≤ τ_ref ≤ FLT_MAX/4;
 //  - the Float8 path (opticalDepth<Float8>, opticalDepthToInfinity<Float8>, applyOpticalDepth<Float8>,
 //    PsSky over Float8) gives, lane by lane, the same bits as the scalar path (simd.hpp's promise).
+// Then, from the bytes left, raster/media/'s functions (against media/reference.hpp):
+//  - ψ and φ at an arbitrary finite float: within 2 ulp, ∞ only past FLT_MAX, NaN never;
+//  - the homogeneous closed form media::radiance (μ, q, L0, s as above, each channel's) and the height
+//    fog's media::heightFogOpticalDepth over the same rays, and the radiance from that τ: within
+//    8 ulp·(1 + κ) (κ by perturbing the inputs, reference::relativeCondition) plus 2⁻¹²⁶·(1 + q)
+//    absolute (a τ below float's range loses q·τ), or, where τ is past FLT_MAX, the limit at τ = ∞;
+//    transmittance in [0, 1];
+//  - the phase functions at g ∈ [−1, 1] (edges and tiny |g| favoured) and cos θ, u ∈ [0, 1]:
+//    Henyey–Greenstein finite and > 0, within 16 ulp·(1 + κ) of its long-double value where |g| < 1;
+//    a sample's cos θ in [−1, 1], never NaN, and the CDF at it within 8 ulp of 1 times the density of
+//    u; Rayleigh within 4 ulp;
+//  - each at eight lanes of Float8 gives the scalar's bits.
 // A broken contract prints the inputs and aborts, which libFuzzer reports as a crash.
 #include <fuzzer/FuzzedDataProvider.h>
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cfloat>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <initializer_list>
 #include <string>
+#include <utility>
 
+#include "raster/media/exprel.hpp"
+#include "raster/media/height_fog.hpp"
+#include "raster/media/homogeneous.hpp"
+#include "raster/media/phase_functions.hpp"
+#include "raster/media/reference.hpp"
 #include "raster/shaders/fog.hpp"
 #include "raster/simd.hpp"
 
@@ -286,6 +307,196 @@ void checkLane(const char* what, const Channel& c, float scalar, float wide) {
     }
 }
 
+// ---- raster/media/ ------------------------------------------------------------------------------
+
+[[noreturn]] void mediaFinding(const char* what, const std::string& inputs, double got, double want) {
+    std::fprintf(stderr, "fuzz_fog: contract broken: %s: got %.9g, reference %.12g\n  %s\n", what, got, want,
+                 inputs.c_str());
+    std::abort();
+}
+
+std::string numbers(std::initializer_list<std::pair<const char*, double>> named) {
+    std::string text;
+    for (const auto& [name, value] : named) {
+        char item[64];
+        std::snprintf(item, sizeof item, "%s=%.9g ", name, value);
+        text += item;
+    }
+    return text;
+}
+
+// |v − ref| within ulps·(1 + κ) of float's unit roundoff relative to ref, plus floor; +∞ where ref is
+// past FLT_MAX (or within the tolerance of it); NaN never.
+bool withinCondition(float v, Real ref, Real kappa, Real ulps, Real floor) {
+    if (std::isnan(v) || std::isnan(ref)) return false;
+    const Real tolerance = ulps * kU * (1 + kappa);
+    if (std::fabs(ref) > Real(FLT_MAX))
+        return std::isinf(v) || std::fabs(Real(v)) >= Real(FLT_MAX) * (1 - tolerance);
+    if (std::isinf(v)) return std::fabs(ref) * (1 + tolerance) > Real(FLT_MAX);
+    return std::fabs(Real(v) - ref) <= tolerance * std::fabs(ref) + floor;
+}
+
+// |v − ref| in ulps of float at ref (2⁻¹⁴⁹ below the normal range); 0 for +∞ where ref is past
+// FLT_MAX; ∞ for NaN or for ∞ where ref is a float.
+double ulpError(float v, Real ref) {
+    if (std::isnan(v)) return INFINITY;
+    const Real a = std::fabs(ref);
+    if (a > Real(FLT_MAX)) return std::isinf(v) ? 0 : INFINITY;
+    if (std::isinf(v)) return INFINITY;
+    int e = 0;
+    std::frexp(double(float(ref)), &e);
+    const Real ulp = a < Real(FLT_MIN) ? 0x1p-149L : std::ldexp(1.0L, e - 24);
+    return double(std::fabs(Real(v) - ref) / ulp);
+}
+
+float anyFloat(FuzzedDataProvider& in) {
+    switch (in.ConsumeIntegralInRange<int>(0, 3)) {
+        case 0:
+            return std::bit_cast<float>(in.ConsumeIntegral<uint32_t>() & 0xFF7FFFFFu);  // any finite float
+        case 1:
+            return in.ConsumeFloatingPointInRange<float>(-1.0f, 1.0f);
+        default:
+            return (in.ConsumeBool() ? 1.0f : -1.0f) * logUniform(in, 1e-30f, 100.0f);
+    }
+}
+
+void checkExprel(FuzzedDataProvider& in) {
+    Float8 x8;
+    for (int i = 0; i < 8; ++i) x8.set(i, anyFloat(in));
+    const Float8 psi8 = raster::media::psi(x8), phi8 = raster::media::phi(x8);
+    for (int i = 0; i < 8; ++i) {
+        const float x = x8[i], psi = raster::media::psi(x), phi = raster::media::phi(x);
+        const std::string inputs = numbers({{"x", x}});
+        if (!(ulpError(psi, raster::media::reference::psi(x)) <= 2))
+            mediaFinding("psi", inputs, psi, double(raster::media::reference::psi(x)));
+        if (!(ulpError(phi, raster::media::reference::phi(x)) <= 2))
+            mediaFinding("phi", inputs, phi, double(raster::media::reference::phi(x)));
+        if (!sameBits(psi, psi8[i]) || !sameBits(phi, phi8[i]))
+            mediaFinding("psi/phi Float8 lane", inputs, psi8[i], psi);
+    }
+}
+
+// The homogeneous closed form and the height fog's optical depth and radiance through media/.
+void checkClosedForms(FuzzedDataProvider& in, const Medium& m) {
+    using raster::media::reference::relativeCondition;
+    namespace ref = raster::media::reference;
+    const float b = m.fog.b, y0 = m.y0;
+    Float8 L08, mu8, q8, s8, dy8;
+    float L0[8], mu[8], q[8], s[8], dy[8];
+    for (int i = 0; i < 8; ++i) {
+        L0[i] = in.ConsumeFloatingPointInRange<float>(0.0f, 1.0f), mu[i] = sigmaOrQ(in), q[i] = sigmaOrQ(in);
+        s[i] = distance(in), dy[i] = directionY(in);
+        L08.set(i, L0[i]), mu8.set(i, mu[i]), q8.set(i, q[i]), s8.set(i, s[i]), dy8.set(i, dy[i]);
+    }
+    const Float8 constant8 = raster::media::radiance(L08, mu8, q8, s8);
+    const Float8 tau8 = raster::media::heightFogOpticalDepth(Float8(b), Float8(y0), dy8, s8);
+    for (int i = 0; i < 8; ++i) {
+        const std::string inputs = numbers(
+            {{"L0", L0[i]}, {"mu", mu[i]}, {"q", q[i]}, {"s", s[i]}, {"b", b}, {"y0", y0}, {"dy", dy[i]}});
+        const float L = raster::media::radiance(L0[i], mu[i], q[i], s[i]);
+        auto constant = [](const std::array<Real, 4>& x) { return ref::radiance(x[0], x[1], x[2], x[3]); };
+        const std::array<Real, 4> c_in = {L0[i], mu[i], q[i], s[i]};
+        if (!withinCondition(L, constant(c_in), relativeCondition(constant, c_in), 8,
+                             0x1p-126L * (1 + Real(q[i]))))
+            mediaFinding("media::radiance", inputs, L, double(constant(c_in)));
+        const float T = raster::media::transmittance(mu[i], s[i]);
+        if (!(T >= 0 && T <= 1)) mediaFinding("media::transmittance", inputs, T, 0);
+        const float tau = raster::media::heightFogOpticalDepth(b, y0, dy[i], s[i]);
+        auto depth = [](const std::array<Real, 4>& x) {
+            return ref::heightFogOpticalDepth(x[0], x[1], x[2], x[3]);
+        };
+        const std::array<Real, 4> d_in = {b, y0, dy[i], s[i]};
+        if (!withinCondition(tau, depth(d_in), relativeCondition(depth, d_in), 8, 0x1p-126L))
+            mediaFinding("media::heightFogOpticalDepth", inputs, tau, double(depth(d_in)));
+        const float Lh = raster::media::radiance(L0[i], mu[i], q[i], tau);
+        auto height = [](const std::array<Real, 7>& x) {
+            return ref::heightFogRadiance(x[0], x[1], x[2], x[3], x[4], x[5], x[6]);
+        };
+        const std::array<Real, 7> h_in = {L0[i], mu[i], q[i], b, y0, dy[i], s[i]};
+        // τ is a float: past FLT_MAX it is +∞, and L the limit at τ = ∞ (height_fog.hpp).
+        if (depth(d_in) > Real(FLT_MAX)) {
+            const Real limit = ref::radiance(L0[i], mu[i], q[i], INFINITY);
+            if (std::isinf(tau) && !withinCondition(Lh, limit, 0, 8, 0x1p-126L))
+                mediaFinding("media::radiance of the height fog at τ = ∞", inputs, Lh, double(limit));
+        } else if (!withinCondition(Lh, height(h_in), relativeCondition(height, h_in), 8,
+                                    0x1p-126L * (1 + Real(q[i])))) {
+            mediaFinding("media::radiance of the height fog", inputs, Lh, double(height(h_in)));
+        }
+        if (!sameBits(L, constant8[i]) || !sameBits(tau, tau8[i]))
+            mediaFinding("closed forms Float8 lane", inputs, L, constant8[i]);
+    }
+}
+
+float anisotropy(FuzzedDataProvider& in) {
+    switch (in.ConsumeIntegralInRange<int>(0, 5)) {
+        case 0:
+            return in.ConsumeBool() ? 1.0f : -1.0f;
+        case 1:
+            return (in.ConsumeBool() ? 1.0f : -1.0f) * (1.0f - logUniform(in, 0x1p-24f, 1e-2f));
+        case 2:
+            return (in.ConsumeBool() ? 1.0f : -1.0f) * logUniform(in, 1e-30f, 1e-2f);
+        case 3:
+            return 0.0f;
+        default:
+            return in.ConsumeFloatingPointInRange<float>(-1.0f, 1.0f);
+    }
+}
+
+// The Henyey–Greenstein density and CDF in long double (the CDF without its cancellation at g → 0:
+// (1 − g)(1 + c)/(√B·(1 + g + √B)), B = 1 + g² − 2g·c as a sum of non-negative terms).
+Real hgDensity(Real g, Real c) {
+    const Real base = g >= 0 ? (1 - g) * (1 - g) + 2 * g * (1 - c) : (1 + g) * (1 + g) - 2 * g * (1 + c);
+    return (1 - g) * (1 + g) / (4 * 3.14159265358979323846264338327950288L * base * std::sqrt(base));
+}
+Real hgCdf(Real g, Real c) {
+    const Real base = g >= 0 ? (1 - g) * (1 - g) + 2 * g * (1 - c) : (1 + g) * (1 + g) - 2 * g * (1 + c);
+    const Real root = std::sqrt(base);
+    return (1 - g) * (1 + c) / (root * (1 + g + root));
+}
+
+void checkPhaseFunctions(FuzzedDataProvider& in) {
+    using raster::media::reference::relativeCondition;
+    Float8 g8, c8, u8;
+    for (int i = 0; i < 8; ++i) {
+        g8.set(i, anisotropy(in));
+        c8.set(i, in.ConsumeBool()
+                      ? (in.ConsumeBool() ? 1.0f : -1.0f) * (1.0f - logUniform(in, 0x1p-24f, 1.0f))
+                      : in.ConsumeFloatingPointInRange<float>(-1.0f, 1.0f));
+        u8.set(i, in.ConsumeBool() ? float(in.ConsumeIntegralInRange<uint32_t>(0, (1u << 24) - 1)) * 0x1p-24f
+                                   : in.ConsumeProbability<float>());
+    }
+    const Float8 hg8 = raster::media::henyeyGreenstein(g8, c8),
+                 sample8 = raster::media::sampleHenyeyGreenstein(g8, u8);
+    const Float8 rayleigh8 = raster::media::rayleigh(c8);
+    for (int i = 0; i < 8; ++i) {
+        const float g = g8[i], c = c8[i], u = u8[i];
+        const std::string inputs = numbers({{"g", g}, {"cos", c}, {"u", u}});
+        const float p = raster::media::henyeyGreenstein(g, c);
+        if (!(p > 0) || std::isinf(p)) mediaFinding("henyeyGreenstein", inputs, p, double(hgDensity(g, c)));
+        if (std::fabs(g) < 1) {
+            auto density = [](const std::array<Real, 2>& x) { return hgDensity(x[0], x[1]); };
+            const std::array<Real, 2> p_in = {g, c};
+            if (!withinCondition(p, density(p_in), relativeCondition(density, p_in), 16, 0))
+                mediaFinding("henyeyGreenstein", inputs, p, double(density(p_in)));
+        }
+        const float r = raster::media::rayleigh(c);
+        const Real r_ref = 3 / (16 * 3.14159265358979323846264338327950288L) * (1 + Real(c) * c);
+        if (!withinCondition(r, r_ref, 0, 4, 0)) mediaFinding("rayleigh", inputs, r, double(r_ref));
+        const float cos_theta = raster::media::sampleHenyeyGreenstein(g, u);
+        if (!(std::fabs(cos_theta) <= 1)) mediaFinding("sampleHenyeyGreenstein range", inputs, cos_theta, 0);
+        if (std::fabs(g) < 1) {
+            // An ulp of 1 in cos θ moves the CDF by 2π·p(cos θ) of it: 8 of those, and 8 ulp of u.
+            const Real slack =
+                8 * kU * (2 * 3.14159265358979323846264338327950288L * hgDensity(g, cos_theta) + 1);
+            const Real cdf = hgCdf(g, cos_theta);
+            if (!(std::fabs(cdf - u) <= slack))
+                mediaFinding("sampleHenyeyGreenstein inverts the CDF", inputs, double(cdf), u);
+        }
+        if (!sameBits(p, hg8[i]) || !sameBits(cos_theta, sample8[i]) || !sameBits(r, rayleigh8[i]))
+            mediaFinding("phase functions Float8 lane", inputs, hg8[i], p);
+    }
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
@@ -358,5 +569,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
             checkLane("PsSky", ch, L[c], sky8[c][i]);
         }
     }
+
+    // raster/media/, from the bytes left (the inputs before these bytes decode as they always did).
+    checkExprel(in);
+    checkClosedForms(in, m);
+    checkPhaseFunctions(in);
     return 0;
 }

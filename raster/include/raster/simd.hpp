@@ -252,11 +252,11 @@ inline Int8x2 toIntRound(Float8x2 a) { return {toIntRound(a.h[0]), toIntRound(a.
 inline Float8x2 toFloatI(Int8x2 i) { return toFloat(i); }
 inline Int8x2 halfOf(Int8x2 k) { return {halfOf(k.h[0]), halfOf(k.h[1])}; }
 
-// (k, r, e^r − 1) for x already clamped to [−104, 89].
-template <class T>
-auto expReduce(T x) {
-    const T kf = x * T(1.44269504088896341f);
-    const auto k = toIntRound(kf);
+// e^r − 1 for r = x − k·ln2, given the integer k (the nearest to x/ln2 in expReduce; |k| ≤ 150):
+// |r| ≤ ln2/2 when k is the nearest, and the polynomial stays accurate a little beyond (media/exprel.hpp
+// takes k = 0 up to |x| = 0.366).
+template <class T, class K>
+T expm1Reduced(T x, K k) {
     const T k_real = toFloatI(k);
     // x − k·ln2 with ln2 in two parts, each product rounded once with its subtraction.
     const T r = fma(k_real, T(2.12194440e-4f), fma(k_real, T(-0.693359375f), x));
@@ -268,8 +268,15 @@ auto expReduce(T x) {
     p = fma(r, p, T(1.0f / 6.0f));
     p = fma(r, p, T(0.5f));
     p = fma(r, p, T(1.0f));
-    p = p * r;
-    return std::make_tuple(k, p);
+    return p * r;
+}
+
+// (k, e^r − 1) for x already clamped to [−104, 89], r = x − k·ln2 with k the integer nearest x/ln2.
+template <class T>
+auto expReduce(T x) {
+    const T kf = x * T(1.44269504088896341f);
+    const auto k = toIntRound(kf);
+    return std::make_tuple(k, expm1Reduced(x, k));
 }
 }  // namespace detail
 
