@@ -3,8 +3,9 @@
 // panels side by side — absorption only, emission only, absorption and emission. A pixel that sees the
 // box sees the world behind it along a path of length s through the box, and
 //   L(s) = L(0)·e^{−μ·s} + q·s·ψ(μ·s),   ψ(x) = (1 − e^{−x})/x, ψ(0) = 1
-// (FogMedium's constant form, finite for μ = 0). The box's pixel shader finds s per pixel (the view
-// ray's entry and exit through the box's slabs) and hands the output merger both terms at once:
+// (raster/media/homogeneous.hpp: media::transmittance and media::gathered, finite for μ = 0). The
+// box's pixel shader finds s per pixel (the view ray's entry and exit through the box's slabs) and
+// hands the output merger both terms at once:
 // SV_Target0 = q·s·ψ(μ·s) and SV_Target1 = e^{−μ·s}, blended as src·1 + dst·src1 (dual-source), so the
 // world drawn before is attenuated and the emission added in one draw.
 //
@@ -16,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include "raster/media/homogeneous.hpp"
 #include "raster/shaders/basic.hpp"
 #include "raster/shaders/fog.hpp"
 #include "raster/teaching_draw.hpp"
@@ -82,17 +84,16 @@ float pathThroughBox(const glm::vec3& eye, const glm::vec3& point) {
 }
 
 // The box's medium over the pixel's path: SV_Target0 the emission q·s·ψ(μ·s), SV_Target1 the
-// transmittance e^{−μ·s}, by FogMedium's constant form (one expm1 per channel, e = T − 1).
+// transmittance e^{−μ·s}, per channel.
 struct PsMediumBox {
-    shaders::FogMedium medium;  // height = false
+    glm::vec3 mu{0.0f}, q{0.0f};  // extinction 1/m, source radiance per metre
     glm::vec3 eye{0.0f};
     std::array<glm::vec4, 2> operator()(const LitVertex& in) const {
         const float s = pathThroughBox(eye, in.worldPos);
         glm::vec3 emitted, transmitted;
         for (int c = 0; c < 3; ++c) {
-            const float e = medium.sigma[c] == 0.0f ? 0.0f : std::expm1(-(medium.sigma[c] * s));
-            transmitted[c] = 1.0f + e;
-            emitted[c] = medium.inScattered(c, s, e);
+            transmitted[c] = media::transmittance(mu[c], s);
+            emitted[c] = media::gathered(mu[c], q[c], s);
         }
         return {glm::vec4(emitted, 1.0f), glm::vec4(transmitted, 1.0f)};
     }
@@ -153,13 +154,9 @@ class MediaClosedFormScene final : public Scene {
         vs_sky_.eye = camera.eye, vs_sky_.invViewProj = glm::inverse(view_proj);
         const glm::vec3 sigma = o.fogSigma.value_or(kBoxSigma), source = o.fogSource.value_or(kBoxSource);
         const glm::vec3 none(0.0f);
-        const std::array<std::pair<glm::vec3, glm::vec3>, 3> media{
+        const std::array<std::pair<glm::vec3, glm::vec3>, 3> panels{
             {{sigma, none}, {none, source}, {sigma, source}}};
-        for (size_t k = 0; k < 3; ++k) {
-            boxes_[k].medium.height = false;
-            boxes_[k].medium.sigma = media[k].first, boxes_[k].medium.q = media[k].second;
-            boxes_[k].eye = camera.eye;
-        }
+        for (size_t k = 0; k < 3; ++k) boxes_[k] = {panels[k].first, panels[k].second, camera.eye};
         const std::vector<LitIn> box = boxTriangles();
         box_ = VertexBuffer::create(box);
         box_count_ = uint32_t(box.size());
