@@ -47,6 +47,8 @@ struct GraderOptions {
     std::string runnerPath = "fast";  // the runner's pipeline: fast, plain or reference (measurements)
     bool keepScratch = false;         // leave the scratch directory (its path is in GradeRun::output)
     SandboxLimits buildLimits, renderLimits;  // processes: added to the user's tasks at each start
+    // How the build and the runs are kept to their files (isolation.hpp; Auto: the best this machine has).
+    Isolation isolation = Isolation::Auto;
 };
 
 // Limits for a course's machine: a build 300 s wall and CPU, 4 GiB; a render 30 s, 2 GiB; 64 more
