@@ -221,7 +221,8 @@ def hostile_errors(raster, source, klass, name, places, extra):
             errors.append(f"{name}: {path} changed while it was graded")
         if path.startswith(own) and os.path.basename(path) not in REPORT_FILES and not path.endswith(".png"):
             errors.append(f"{name}: its report folder holds {path}, which the grader did not write")
-    for path in (p for p in after if p.startswith("reports" + os.sep) and not after[p].startswith("-> ")):
+    # Signs of success in what changed while it was graded (its own report among them).
+    for path in (p for p in after if p.startswith("reports" + os.sep) and before.get(p) != after[p]):
         with open(os.path.join(klass, path), "rb") as f:
             text = f.read()
         errors += [f"{name}: {path} holds {sign!r}" for sign in SUCCESS_SIGNS if sign.encode() in text]
