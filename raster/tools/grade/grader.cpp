@@ -87,9 +87,8 @@ uid_t childUid(const SandboxCommand& command) {
 // What a submission's build and runs may open (isolation.hpp), besides their scratch directory: the
 // system's programs, headers and libraries for the compile and link; for the runner, the shared
 // libraries and the dynamic loader's cache, and nothing it could execute but itself.
-const std::vector<std::string> kBuildSystem = {"/usr",    "/bin",   "/sbin",   "/lib",
-                                               "/lib32",  "/lib64", "/libx32", "/etc/alternatives",
-                                               "/etc/ld.so.cache"};
+const std::vector<std::string> kBuildSystem = {
+    "/usr", "/bin", "/sbin", "/lib", "/lib32", "/lib64", "/libx32", "/etc/alternatives", "/etc/ld.so.cache"};
 const std::vector<std::string> kRunSystem = {"/usr/lib",    "/usr/lib32", "/usr/lib64",
                                              "/usr/libx32", "/lib",       "/lib32",
                                              "/lib64",      "/libx32",    "/etc/ld.so.cache"};
