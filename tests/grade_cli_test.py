@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""raster grade end to end (issue 32): grades one submission and checks its results.json.
+"""raster grade end to end (docs/GRADING.md): grades one submission and checks its results.json.
 
     grade_cli_test.py RASTER SOURCE_DIR WORK_DIR CASE
 
@@ -50,6 +50,9 @@ CASES = {
     "unbounded_alloc": ("billboards", PARTICLES, "error", ["ran out of memory: "]),
     "fork_bomb": ("billboards", PARTICLES, "error", ["too many processes: "]),
     "snoop": ("billboards", set(), "pass", []),
+    # A file that does not compile is named as such, its first error's file and line first.
+    "compile_error": ("billboards", BILLBOARDS, "error", ["compile failed: billboards.cpp:32:", "error: ", "billboardSizes"]),
+    "link_error": ("billboards", BILLBOARDS, "error", ["link failed: ", "undefined reference to", "additiveFireBlend"]),
     "alternative": (("billboards", "particle-system", "sprite-methods"), set(), "pass", []),
     "age_offset": ("input-layout", PARTICLES, "fail", ["input assembler: ", "with AGE = ", "what the solution reads as LIFESPAN (is the element's AlignedByteOffset that field's offsetof?)"]),
     "colour_too_narrow": ("input-layout", PARTICLES, "fail", ["input assembler: ", "with COLOR = ", "the first 3 components and the defaults (0, 0, 0, 1) after them", "Format too narrow"]),
@@ -96,6 +99,8 @@ BUILD_TIME = set(HOSTILE[:4])
 SUCCESS_SIGNS = ["LEAKED", "FORGED"]
 # The grader's files in a report folder: nothing else may be there after a grade.
 REPORT_FILES = {"results.json", "junit.xml", "report.html"}
+# Words a case's lost scenes must not say (a compile error is not the library's link).
+ABSENT = {"compile_error": ["link failed"], "link_error": ["compile failed"]}
 SCENES = {"billboards": BILLBOARDS, "input-layout": BILLBOARDS, "rasterizer": RASTERIZER,
           "particle-system": BILLBOARDS, "blending": BILLBOARDS, "sprite-methods": SPRITE_METHODS}
 
@@ -148,7 +153,7 @@ def check_case(raster, source, out, case, submission):
     for name in labs:
         extra += ["--lab", name]
     results = grade(raster, submission, os.path.abspath(out), extra, source)
-    errors = scene_errors(results, labs, lost, verdict, words)
+    errors = scene_errors(results, labs, lost, verdict, words, ABSENT.get(case, []))
     if case == "snoop":
         for report in ("results.json", "junit.xml", "report.html"):
             with open(os.path.join(out, report), encoding="utf-8") as f:
@@ -157,9 +162,9 @@ def check_case(raster, source, out, case, submission):
     return errors
 
 
-def scene_errors(results, labs, lost, verdict, words):
-    """Each scene of `labs` graded; those `lost` with `verdict`, 0 points and `words` in their output,
-    the others full marks."""
+def scene_errors(results, labs, lost, verdict, words, absent=()):
+    """Each scene of `labs` graded; those `lost` with `verdict`, 0 points, `words` in their output and
+    none of `absent`, the others full marks."""
     errors = []
     graded = {t["name"]: t for t in results["tests"]}
     expected = {f"{name}: {scene}" for name in labs for scene in SCENES[name]}
@@ -174,6 +179,9 @@ def scene_errors(results, labs, lost, verdict, words):
             for w in words:
                 if w not in t["output"]:
                     errors.append(f"{full_name}: the output lacks {w!r}:\n{t['output']}")
+            for w in absent:
+                if w in t["output"]:
+                    errors.append(f"{full_name}: the output says {w!r}:\n{t['output']}")
         elif t["score"] != t["max_score"]:
             errors.append(f"{full_name}: lost ({status}, {t['score']} of {t['max_score']}) but should not:\n{t['output']}")
     return errors

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Gradescope's autograder zip end to end (issue 32; docs/GRADING.md, "Grading on Gradescope").
+"""Gradescope's autograder zip end to end (docs/GRADING.md, "Grading on Gradescope").
 
     gradescope_test.py SOURCE_DIR BUILD_DIR WORK_DIR CMAKE
 

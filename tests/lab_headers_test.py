@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""No lab sees its answers (issue 31): every translation unit under labs/ is compiled without the
+"""No lab sees its answers (labs/README.md): every translation unit under labs/ is compiled without the
 folder of the lecture's finished shaders on its include path, and none of the headers it includes
 holds a solution (raster/src/lecture/, solutions/). Nor does it parse the template pipeline
 (pipeline_impl.hpp, the fill paths, the merge policies): labs draw through the teaching pipeline.

@@ -465,7 +465,8 @@ TEST(FastBlender, EightWideReplaceIsTheScalarBlenderLaneByLane) { expectWideSame
 TEST(FastBlender, PairOfBlocksIsWriteWideOnEachBlock) {
     using Color = ColorFast<BlendAdditiveRgba8>;
     if constexpr (!Color::kWidePair) {
-        GTEST_SKIP() << "no AVX-512 here: the pipeline blends a pair as two writeWide calls";
+        GTEST_SKIP() << "no AVX-512 in this build: ColorFast::writeWidePair (avx512::additiveBlendRgba8Pair) was not run "
+                        "here; the pipeline blends a pair as two writeWide calls";
     } else {
         const std::vector<float> grid = sourceGrid();
         const size_t g = grid.size();

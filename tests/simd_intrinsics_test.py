@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Intrinsics live only in the SIMD layer (issue 31): no C or C++ file of raster, the labs, the
+"""Intrinsics live only in the SIMD layer (docs/DESIGN.md): no C or C++ file of raster, the labs, the
 solutions or the tests names a processor's intrinsic, its vector types or its headers, except
 raster/include/raster/simd/ (base.hpp's list: one header per instruction set), so that a stage
 header reads as plain code calling named operations (raster/simd/ops.hpp).

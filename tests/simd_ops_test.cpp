@@ -9,9 +9,15 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
+#include <map>
 #include <random>
+#include <sstream>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "raster/format.hpp"
@@ -300,15 +306,33 @@ TEST(SimdOps, EightPixelAdditiveBlendIsTheOnePixelBlendInEveryLane) {
         const I32x8 portable = simd::portable::additiveBlendRgba8(dest, rgba[0], rgba[1], rgba[2], rgba[3]);
         for (int l = 0; l < 8; ++l) {
             uint8_t pixel[4];
-            std::memcpy(pixel, &dest[l], 4);
+            const int32_t old = dest[l];  // a copy: clang takes no vector element's address
+            std::memcpy(pixel, &old, 4);
             simd::additiveBlendUnorm8x4(pixel, glm::vec4(rgba[0][l], rgba[1][l], rgba[2][l], rgba[3][l]));
             int32_t want;
             std::memcpy(&want, pixel, 4);
             ASSERT_EQ(got[l], want) << "lane " << l << ": " << rgba[0][l] << " alpha " << rgba[3][l];
             ASSERT_EQ(portable[l], want) << "portable, lane " << l;
         }
-#if RASTER_AVX512
-        // The pair: block 0 in lanes 0–7 (its rows at columns 0–3), block 1 in lanes 8–15 (4–7).
+    }
+}
+
+// ---- The pair of blocks (AVX-512) ------------------------------------------------------------------
+
+// What a test that needs AVX-512 prints when it skips, naming what did not run.
+[[maybe_unused]] constexpr const char* kNoAvx512 =
+    "no AVX-512 in this build (F, BW, DQ and VL): simd/avx512.hpp's kernels were not run here; "
+    "SimdOps.PortablePairKernelsReproduceTheAvx512Recording checked their recorded outputs instead";
+
+// `blend` (a pair kernel: two side-by-side 4×2 blocks, block 0 in lanes 0–7 at columns 0–3, block 1
+// in lanes 8–15 at columns 4–7) against the one-pixel blend lane by lane, under random masks.
+template <class PairBlend>
+void expectPairBlendIsOnePixelBlend(PairBlend blend) {
+    LaneSource source(8, -0.5f, 1.5f);
+    std::mt19937 rng(10);
+    for (int round = 0; round < 5000; ++round) {
+        F32x8 rgba[4];
+        for (auto& channel : rgba) channel = source.lanes();
         uint8_t rows[2][32], want_rows[2][32];
         for (auto& row : rows)
             for (auto& b : row) b = uint8_t(rng());
@@ -322,10 +346,185 @@ TEST(SimdOps, EightPixelAdditiveBlendIsTheOnePixelBlendInEveryLane) {
             want_no_ops |= uint32_t(detail::saturate(c.w) == 0.0f) << lane;
             if (mask >> lane & 1) simd::additiveBlendUnorm8x4(&want_rows[l / 4][16 * k + 4 * (l % 4)], c);
         }
-        ASSERT_EQ(simd::additiveBlendRgba8Pair(rows[0], rows[1], pair, mask), want_no_ops);
-        ASSERT_EQ(std::memcmp(rows, want_rows, sizeof rows), 0);
+        ASSERT_EQ(blend(rows[0], rows[1], pair, mask), want_no_ops) << "round " << round;  // bits 16–31 too
+        ASSERT_EQ(std::memcmp(rows, want_rows, sizeof rows), 0) << "round " << round;
+    }
+}
+
+TEST(SimdOps, PortablePairAdditiveBlendIsTheOnePixelBlendInEveryLane) {
+    expectPairBlendIsOnePixelBlend(simd::portable::additiveBlendRgba8Pair);
+}
+
+TEST(SimdOps, Avx512PairAdditiveBlendIsTheOnePixelBlendInEveryLane) {
+#if RASTER_AVX512
+    expectPairBlendIsOnePixelBlend(simd::avx512::additiveBlendRgba8Pair);
+#else
+    GTEST_SKIP() << kNoAvx512;
+#endif
+}
+
+// ---- The AVX-512 kernels' recorded outputs -----------------------------------------------------------
+// Debian packages no emulator that runs AVX-512 code (QEMU's TCG and valgrind stop at AVX2; Intel's SDE
+// is not packaged), and a build without AVX-512 does not compile simd/avx512.hpp at all. So the pair
+// kernels' outputs on fixed inputs are recorded where they run, as digests in
+// tests/data/simd/avx512_kernels.txt together with a digest of avx512.hpp's text. Everywhere, the
+// portable reference must reproduce the recorded outputs, and the recording must be of today's
+// avx512.hpp: an edit to it fails here until it is recorded again on a machine with AVX-512:
+//     RASTER_RECORD_AVX512=1 build/bin/simd_ops_test --gtest_filter='*Avx512*Recording*'
+
+// FNV-1a, 64 bits: a digest of bytes (not for security: it notices any change of an output).
+struct Digest {
+    uint64_t h = 0xcbf29ce484222325ull;
+    void add(const void* data, size_t n) {
+        for (size_t i = 0; i < n; ++i) h = (h ^ static_cast<const uint8_t*>(data)[i]) * 0x100000001b3ull;
+    }
+    std::string hex() const {
+        char text[17];
+        std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(h));
+        return text;
+    }
+};
+
+std::string readFile(const std::string& path) {
+    std::FILE* f = std::fopen(path.c_str(), "rb");
+    if (!f) return "";
+    std::string text;
+    char buffer[4096];
+    for (size_t n; (n = std::fread(buffer, 1, sizeof buffer, f)) > 0;) text.append(buffer, n);
+    std::fclose(f);
+    return text;
+}
+
+const std::string kRecordingPath = std::string(RASTER_TEST_DATA_DIR) + "/simd/avx512_kernels.txt";
+const std::string kAvx512Header = std::string(RASTER_TEST_DATA_DIR) + "/../../raster/include/raster/simd/avx512.hpp";
+
+// A float in [lo, hi) from 24 random bits, the same on every standard library (the <random>
+// distributions are not).
+float uniformFloat(std::mt19937& rng, float lo, float hi) { return lo + (hi - lo) * float(rng() >> 8) * 0x1p-24f; }
+
+// The pair kernels on seeded inputs: footprint filters of several grids (a billboard's row pair, ties
+// of both weights, edge values, random coordinates) and additive blends under random masks, digested.
+struct PairKernels {
+    void (*filter)(const simd::FootprintGrid&, const uint8_t*, const int32_t*, const F32x8 (&)[2],
+                   const F32x8 (&)[2], F32x8 (&)[2][4]);
+    uint32_t (*blend)(uint8_t*, uint8_t*, const F32x8 (&)[4][2], uint32_t);
+};
+std::pair<std::string, std::string> pairKernelDigests(const PairKernels& kernels) {
+    Digest filter, blend;
+    const std::vector<float> edges = edgeValues();
+    for (const auto& [w, h] : {std::pair{16, 8}, std::pair{1, 1}, std::pair{37, 5}, std::pair{64, 64}}) {
+        const Footprints f(w, h, unsigned(w * 131 + h));
+        std::mt19937 rng(unsigned(w * 7 + h));
+        for (int round = 0; round < 2000; ++round) {
+            F32x8 u[2], v[2], out[2][4];
+            const int kind = int(rng() % 4);
+            const float u0 = uniformFloat(rng, -0.3f, 1.3f), du = uniformFloat(rng, 0.0f, 3.0f / float(w));
+            for (int k = 0; k < 2; ++k)
+                for (int l = 0; l < 8; ++l) {
+                    const float column = float(4 * k + l % 4);
+                    if (kind == 0) {  // a billboard's row pair
+                        u[k][l] = u0 + du * column, v[k][l] = float(l / 4) * 0.01f + 0.4f;
+                    } else if (kind == 1) {  // α·256 and β·2^14 halfway between integers
+                        u[k][l] = (float(rng() % uint32_t(w)) + 0.5f + float(2 * (rng() % 256) + 1) / 512.0f) / float(w);
+                        v[k][l] = (float(rng() % uint32_t(h)) + 0.5f + float(2 * (rng() % 16384) + 1) / 32768.0f) / float(h);
+                    } else if (kind == 2) {
+                        u[k][l] = edges[rng() % edges.size()], v[k][l] = edges[rng() % edges.size()];
+                    } else {
+                        u[k][l] = uniformFloat(rng, -0.3f, 1.3f), v[k][l] = uniformFloat(rng, -0.3f, 1.3f);
+                    }
+                }
+            kernels.filter(f.grid, f.bytes.data(), f.planes.data(), u, v, out);
+            filter.add(out, sizeof out);
+        }
+    }
+    std::mt19937 rng(20261204);
+    for (int round = 0; round < 20000; ++round) {
+        F32x8 rgba[4][2];
+        for (auto& channel : rgba)
+            for (auto& block : channel)
+                for (int l = 0; l < 8; ++l)
+                    block[l] = rng() % 3 == 0 ? edges[rng() % edges.size()] : uniformFloat(rng, -0.5f, 1.5f);
+        uint8_t rows[2][32];
+        for (auto& row : rows)
+            for (auto& b : row) b = uint8_t(rng());
+        const uint32_t no_ops = kernels.blend(rows[0], rows[1], rgba, rng() & 0xFFFF);
+        blend.add(rows, sizeof rows), blend.add(&no_ops, sizeof no_ops);
+    }
+    return {filter.hex(), blend.hex()};
+}
+
+// The recording's "key value" lines (lines starting with '#' are comments).
+std::map<std::string, std::string> readRecording() {
+    std::map<std::string, std::string> values;
+    std::istringstream in(readFile(kRecordingPath));
+    for (std::string line; std::getline(in, line);) {
+        if (line.empty() || line[0] == '#') continue;
+        const size_t space = line.find(' ');
+        if (space != std::string::npos) values[line.substr(0, space)] = line.substr(space + 1);
+    }
+    return values;
+}
+
+void portableFootprintFilterPair(const simd::FootprintGrid& grid, const uint8_t* footprints, const int32_t*,
+                                const F32x8 (&u)[2], const F32x8 (&v)[2], F32x8 (&out)[2][4]) {
+    simd::portable::footprintFilter8<2>(grid, footprints, u, v, out);
+}
+const PairKernels kPortablePair = {portableFootprintFilterPair, simd::portable::additiveBlendRgba8Pair};
+
+TEST(SimdOps, PortablePairKernelsReproduceTheAvx512Recording) {
+    const std::map<std::string, std::string> recorded = readRecording();
+    ASSERT_FALSE(recorded.empty()) << "no recording at " << kRecordingPath;
+    const auto [filter, blend] = pairKernelDigests(kPortablePair);
+    EXPECT_EQ(filter, recorded.at("footprintFilterPair")) << "the portable footprint filter of a pair";
+    EXPECT_EQ(blend, recorded.at("additiveBlendRgba8Pair")) << "the portable additive blend of a pair";
+}
+
+TEST(SimdOps, Avx512RecordingIsOfTodaysAvx512Header) {
+    const std::string header = readFile(kAvx512Header);
+    ASSERT_FALSE(header.empty()) << "cannot read " << kAvx512Header;
+    Digest source;
+    source.add(header.data(), header.size());
+    std::map<std::string, std::string> recorded = readRecording();
+    if (simd::kAvx512 && std::getenv("RASTER_RECORD_AVX512")) {
+#if RASTER_AVX512
+        const auto [filter, blend] = pairKernelDigests({simd::avx512::footprintFilterPair, simd::avx512::additiveBlendRgba8Pair});
+        std::string machine = "unknown";
+        std::istringstream cpuinfo(readFile("/proc/cpuinfo"));
+        for (std::string line; std::getline(cpuinfo, line);)
+            if (line.rfind("model name", 0) == 0) {
+                machine = line.substr(line.find(':') + 2);
+                break;
+            }
+        std::FILE* f = std::fopen(kRecordingPath.c_str(), "wb");
+        ASSERT_NE(f, nullptr) << "cannot write " << kRecordingPath;
+        std::fprintf(f,
+                     "# The outputs of raster/include/raster/simd/avx512.hpp's pair kernels on the seeded inputs of\n"
+                     "# tests/simd_ops_test.cpp (pairKernelDigests), as FNV-1a 64 digests, and the digest of the header\n"
+                     "# they were recorded from. Written by RASTER_RECORD_AVX512=1 simd_ops_test on a machine with AVX-512.\n"
+                     "machine %s\nsource %s\nfootprintFilterPair %s\nadditiveBlendRgba8Pair %s\n",
+                     machine.c_str(), source.hex().c_str(), filter.c_str(), blend.c_str());
+        std::fclose(f);
+        std::printf("recorded %s on %s\n", kRecordingPath.c_str(), machine.c_str());
+        return;
 #endif
     }
+    ASSERT_FALSE(recorded.empty()) << "no recording at " << kRecordingPath;
+    EXPECT_EQ(source.hex(), recorded.at("source"))
+        << "raster/include/raster/simd/avx512.hpp changed since its kernels' outputs were recorded (on "
+        << recorded["machine"] << "): record them again on a machine with AVX-512 (RASTER_RECORD_AVX512=1 "
+        << "build/bin/simd_ops_test --gtest_filter='*Avx512*'), where the tests also run the kernels themselves";
+}
+
+TEST(SimdOps, Avx512PairKernelsReproduceTheirRecording) {
+#if RASTER_AVX512
+    const std::map<std::string, std::string> recorded = readRecording();
+    ASSERT_FALSE(recorded.empty()) << "no recording at " << kRecordingPath;
+    const auto [filter, blend] = pairKernelDigests({simd::avx512::footprintFilterPair, simd::avx512::additiveBlendRgba8Pair});
+    EXPECT_EQ(filter, recorded.at("footprintFilterPair")) << "avx512::footprintFilterPair";
+    EXPECT_EQ(blend, recorded.at("additiveBlendRgba8Pair")) << "avx512::additiveBlendRgba8Pair";
+#else
+    GTEST_SKIP() << kNoAvx512;
+#endif
 }
 
 }  // namespace

@@ -28,6 +28,7 @@
 #include "raster/scenes.hpp"
 #include "view/camera.hpp"
 #include "view/compare_views.hpp"
+#include "view/overlay.hpp"
 #include "view/playback.hpp"
 #include "view/trace_views.hpp"
 
@@ -179,6 +180,127 @@ TEST(ViewerProgress, WorkerReportsTheFramesAndTheSolutionsDraws) {
     EXPECT_EQ(frame->solutionDrawCount, 2u);
     EXPECT_GE(frame_draws_seen, 1u) << "the frame's draws were never seen running";
     EXPECT_GE(solution_draws_seen, 1u) << "the solution's draws were never seen running";
+}
+
+// ---- The overlay's text layout -------------------------------------------------------------------------
+
+// One column a character: wrapping to "columns".
+int columns(std::string_view text) {
+    return int(text.size());
+}
+
+std::vector<std::string> wrap(std::string_view text, int maxColumns, std::string_view indent = {}) {
+    return wrapText(text, maxColumns, columns, indent);
+}
+
+using Lines = std::vector<std::string>;
+
+TEST(WrapText, EmptyTextIsOneEmptyLine) {
+    EXPECT_EQ(wrap("", 10), Lines{""});
+    EXPECT_EQ(wrap("", 0), Lines{""});
+    EXPECT_EQ(wrap("    ", 2), Lines{""}) << "spaces alone, too wide: nothing to show";
+}
+
+TEST(WrapText, TextThatFitsIsUnchanged) {
+    EXPECT_EQ(wrap("abc def", 7), Lines{"abc def"}) << "an exact fit";
+    EXPECT_EQ(wrap("  abc  def  ", 12), Lines{"  abc  def  "}) << "spaces and all";
+    EXPECT_EQ(wrap("abc def", 6), (Lines{"abc", "def"})) << "one column short";
+}
+
+TEST(WrapText, BreaksAtSpacesGreedily) {
+    const std::string text = "the quick brown fox jumps over the lazy dog";
+    for (int width = 5; width <= int(text.size()); ++width) {
+        const Lines lines = wrap(text, width);
+        std::string joined;
+        for (size_t i = 0; i < lines.size(); ++i) {
+            EXPECT_LE(int(lines[i].size()), width) << lines[i];
+            // Greedy: the next line's first word would not have fitted.
+            if (i + 1 < lines.size()) {
+                EXPECT_GT(lines[i].size() + 1 + std::min(lines[i + 1].find(' '), lines[i + 1].size()),
+                          size_t(width))
+                    << "'" << lines[i] << "' could take more at " << width;
+            }
+            joined += (i ? " " : "") + lines[i];
+        }
+        EXPECT_EQ(joined, text) << "at " << width << " columns";
+    }
+    EXPECT_EQ(wrap(text, 10), (Lines{"the quick", "brown fox", "jumps over", "the lazy", "dog"}));
+}
+
+TEST(WrapText, SpacesGoAtBreaksAndStayWithinLines) {
+    EXPECT_EQ(wrap("a  b   c", 4), (Lines{"a  b", "c"}));
+    EXPECT_EQ(wrap("  ab cd", 5), (Lines{"  ab", "cd"})) << "the first line keeps its indentation";
+    EXPECT_EQ(wrap("ab cd   ", 4), (Lines{"ab", "cd"})) << "trailing spaces go";
+}
+
+TEST(WrapText, LongWordsAreBrokenBetweenCharacters) {
+    EXPECT_EQ(wrap("ab abcdefghij cd", 4), (Lines{"ab", "abcd", "efgh", "ij", "cd"}));
+    EXPECT_EQ(wrap("abcdefghij", 5), (Lines{"abcde", "fghij"})) << "exact multiples";
+    EXPECT_EQ(wrap("abc", 0), (Lines{"a", "b", "c"})) << "at least a character a line";
+    EXPECT_EQ(wrap("abc", -3), (Lines{"a", "b", "c"}));
+}
+
+TEST(WrapText, ContinuationsStartWithTheIndent) {
+    EXPECT_EQ(wrap("aa bb cc dd", 5, "> "), (Lines{"aa bb", "> cc", "> dd"}));
+    EXPECT_EQ(wrap("aaaaaaa", 4, "> "), (Lines{"aaaa", "> aa", "> a"})) << "counted in the width";
+    EXPECT_EQ(wrap("a bbbbb", 2, ">>"), (Lines{"a", ">>b", ">>b", ">>b", ">>b", ">>b"}))
+        << "an indent as wide as the line still gets a character a line";
+}
+
+TEST(WrapText, FontWidthsAddUp) {
+    const std::string text = "difference from scene billboards@solution: 88829 of 230400 pixels differ";
+    int sum = 0;
+    for (const char c : text) sum += textWidth(std::string(1, c));
+    EXPECT_EQ(textWidth(text), sum);
+    EXPECT_EQ(textWidth(" "), 6);
+    EXPECT_LT(textWidth("i"), textWidth("m")) << "a proportional font";
+    EXPECT_EQ(textWidth("\x01\xC3\xA9"), 3 * textWidth("?")) << "bytes without a glyph count as '?'";
+    const int longest_word = textWidth("billboards@solution:");
+    for (const int width : {longest_word, longest_word + 37, 200, 333}) {
+        const Lines lines = wrapText(text, width, textWidth);
+        std::string joined;
+        for (size_t i = 0; i < lines.size(); ++i) {
+            EXPECT_LE(textWidth(lines[i]), width) << lines[i];
+            joined += (i ? " " : "") + lines[i];
+        }
+        EXPECT_EQ(joined, text) << "at " << width << " font pixels";
+    }
+}
+
+TEST(FitPanel, WrapsLinesToTheWidthAndKeepsColumns) {
+    TextPanel panel;
+    panel.lines = {"a status line that is long enough to need at least one break at this width",
+                   "K\tthe solution's image, a description long enough to wrap in its column", "J\tshort",
+                   "two\nlines"};
+    for (const int scale : {1, 2}) {
+        const int width = 260 * scale;
+        const TextPanel fitted = fitPanel(panel, width, 10000, scale);
+        EXPECT_LE(panelSize(fitted, scale).x, width) << "scale " << scale;
+        EXPECT_GT(panelSize(panel, scale).x, width) << "the test needs a panel too wide";
+        // The long line continues indented; the description continues in its column.
+        ASSERT_GE(fitted.lines.size(), 7u);
+        EXPECT_TRUE(fitted.lines[1].starts_with(kContinuationIndent)) << fitted.lines[1];
+        size_t k = 0;
+        while (k < fitted.lines.size() && !fitted.lines[k].starts_with("K\t")) ++k;
+        ASSERT_LT(k + 1, fitted.lines.size());
+        EXPECT_TRUE(fitted.lines[k + 1].starts_with("\t")) << fitted.lines[k + 1];
+        EXPECT_EQ(fitted.lines[fitted.lines.size() - 2], "two") << "'\\n' breaks a line";
+        EXPECT_EQ(fitted.lines.back(), "lines");
+    }
+}
+
+TEST(FitPanel, TooManyLinesEndInANoteOfHowManyMore) {
+    TextPanel panel;
+    for (int i = 0; i < 30; ++i) panel.lines.push_back("line " + std::to_string(i));
+    // Room for 10 lines at scale 1: padding top and bottom, 12 font pixels a line.
+    const int height = 2 * kPanelPadding + 10 * kPanelLineHeight;
+    const TextPanel fitted = fitPanel(panel, 600, height, 1, ": see --help");
+    ASSERT_EQ(fitted.lines.size(), 10u);
+    EXPECT_EQ(fitted.lines[8], "line 8");
+    EXPECT_EQ(fitted.lines[9], "... 21 more lines: see --help");
+    EXPECT_LE(panelSize(fitted, 1).y, height);
+    EXPECT_EQ(fitPanel(panel, 600, 2 * height, 2, "").lines.size(), 10u) << "the same room at scale 2";
+    EXPECT_EQ(fitPanel(panel, 600, 10000, 1).lines, panel.lines) << "room for all";
 }
 
 // ---- Scripts and options ---------------------------------------------------------------------------------
@@ -1067,6 +1189,91 @@ TEST_F(ViewerTest, LabIsComparedWithItsSolution) {
         "scene billboards@solution");
     ASSERT_FALSE(lines.empty());
     EXPECT_TRUE(said(last_messages_, lines[0])) << lines[0];
+}
+
+// The status lines as the window shows them, read back from the window (--screenshot-window) with
+// J's three lines of difference on a lab: at 640 pixels wide (small text) and 960 (large text,
+// where the difference's first line is too long for one row), with and without the help (H).
+TEST_F(ViewerTest, StatusLinesFitTheWindow) {
+    for (const auto& [width, height] : {std::pair{640, 360}, std::pair{960, 540}}) {
+        const std::string size = std::to_string(width) + "x" + std::to_string(height);
+        ViewerOptions o = options("J S H S", "billboards");
+        o.sceneOptions.width = uint32_t(width), o.sceneOptions.height = uint32_t(height);
+        o.screenshotWindow = true;
+        Viewer viewer(o);
+        viewer.run();
+        ASSERT_EQ(viewer.screenshots().size(), 2u) << size;
+        std::vector<ImageRgba8> windows;
+        for (const std::string& shot : viewer.screenshots())
+            windows.push_back(readImageRgba8(shot.substr(0, shot.size() - 4) + "-window.png"));
+        ASSERT_EQ(windows[0].width, uint32_t(width)) << size;
+        ASSERT_EQ(windows[0].height, uint32_t(height)) << size;
+
+        // Every line complete: the notes of J among the lines, the rows those lines unwrapped.
+        const std::vector<std::string>& lines = viewer.statusLines();
+        const std::vector<std::string>& rows = viewer.statusRows();
+        ASSERT_EQ(viewer.viewNotes().size(), 3u) << size;
+        EXPECT_TRUE(viewer.viewNotes()[0].starts_with("difference from scene billboards@solution: "))
+            << viewer.viewNotes()[0];
+        ASSERT_GE(lines.size(), 5u);
+        EXPECT_TRUE(std::equal(viewer.viewNotes().begin(), viewer.viewNotes().end(), lines.end() - 3))
+            << size;
+        std::vector<std::string> unwrapped;
+        for (const std::string& row : rows) {
+            if (row.starts_with(kContinuationIndent) && !unwrapped.empty())
+                unwrapped.back() += " " + row.substr(kContinuationIndent.size());
+            else
+                unwrapped.push_back(row);
+        }
+        EXPECT_EQ(unwrapped, lines) << size;
+        if (width == 960) {
+            EXPECT_GT(rows.size(), lines.size()) << "the difference's first line wraps";
+        }
+
+        // The pixels: the HUD's text is white (the difference view has none), the help's yellow.
+        const int scale = overlayScale(width);
+        const int text_right = width - kPanelMargin - kPanelPadding * scale;  // the text stays left of it
+        const auto colour_at = [&](const ImageRgba8& image, int x, int y) {
+            const uint8_t* p = &image.pixels[4 * (size_t(y) * image.width + size_t(x))];
+            return Rgb{p[0], p[1], p[2]};
+        };
+        const Rgb white{255, 255, 255}, help_yellow{255, 240, 160};
+        // Per row: the rightmost white pixel, -1 for none. Per shot: the text past the margins.
+        const int top = kPanelMargin + kPanelPadding * scale, row_height = kPanelLineHeight * scale;
+        std::vector<int> rightmost(rows.size(), -1);
+        for (size_t shot = 0; shot < 2; ++shot) {
+            int help_pixels = 0, outside = 0, below = 0;
+            std::string first;  // where the first pixel outside or below is
+            for (int y = 0; y < height; ++y)
+                for (int x = 0; x < width; ++x) {
+                    const Rgb c = colour_at(windows[shot], x, y);
+                    if (c != white && c != help_yellow) continue;
+                    help_pixels += c == help_yellow;
+                    const int row = (y - top) / row_height;
+                    const bool out = x >= text_right || y >= height - kPanelMargin,
+                               low = c == white && (y < top || row >= int(rows.size()));
+                    if ((out || low) && outside + below == 0)
+                        first = std::to_string(x) + "," + std::to_string(y);
+                    outside += out, below += low;
+                    if (c == white && !low && shot == 0)
+                        rightmost[size_t(row)] = std::max(rightmost[size_t(row)], x);
+                }
+            EXPECT_EQ(outside, 0) << "text pixels past the margins, the first at " << first << ", " << size
+                                  << (shot ? " with the help" : "");
+            EXPECT_EQ(below, 0) << "status text outside its rows, the first at " << first << ", " << size;
+            EXPECT_EQ(help_pixels > 0, shot == 1) << size << " shot " << shot;
+        }
+        // Each row's last glyph drawn where the font's widths put it: the row is there, all of it.
+        for (size_t r = 0; r < rows.size(); ++r) {
+            const std::string& row = rows[r];
+            ASSERT_FALSE(row.empty());
+            const int last_glyph =
+                kPanelMargin + (kPanelPadding + textWidth(row.substr(0, row.size() - 1))) * scale;
+            EXPECT_GE(rightmost[r], last_glyph) << "row " << r << " '" << row << "', " << size;
+            EXPECT_LT(rightmost[r], kPanelMargin + (kPanelPadding + textWidth(row)) * scale)
+                << "row " << r << " '" << row << "', " << size;
+        }
+    }
 }
 
 TEST_F(ViewerTest, SolutionKeysWithoutASolutionSaySo) {

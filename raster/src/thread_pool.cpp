@@ -78,8 +78,8 @@ void ThreadPool::runItems(unsigned thread) {
 namespace {
 // How long a thread that runs out of work polls for the next before it sleeps. Waking a sleeping
 // thread through the condition variable costs about 29 µs a parallelFor on the project's machine
-// (PERFORMANCE.md; commit ad4ee68), and a frame makes several calls a few µs apart; 50 µs of polling
-// after each call is a small price where nothing follows.
+// (docs/PERFORMANCE.md, "Threads"), and a frame makes several calls a few µs apart; 50 µs of
+// polling after each call is a small price where nothing follows.
 constexpr auto kSpin = std::chrono::microseconds(50);
 
 // Polls done() until it is true or kSpin has passed; returns done().

@@ -43,7 +43,8 @@ constexpr double kBenchFrameSeconds = 1.0 / 60.0;
 constexpr const char* kParticlesSim = "particles-sim";
 
 // One step of the simulation K times after the burst's step (all particles born) and one more
-// warm-up step; the median is what issue #33's goals name.
+// warm-up step; the median is what the goals of docs/PERFORMANCE.md ("Particle simulation and depth
+// sort") name.
 int runParticlesSim(const BenchArgs& args) {
     const uint32_t count = args.options.count.value_or(1'000'000);
     RASTER_REQUIRE(count > 0, InvalidArgument, "particles-sim needs --count of at least 1");

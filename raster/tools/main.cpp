@@ -10,6 +10,7 @@
 #include "commands.hpp"
 #include "options.hpp"
 #include "raster/check.hpp"
+#include "raster/simd/base.hpp"
 
 namespace {
 
@@ -54,11 +55,38 @@ int run(CLI::App& app, const std::vector<raster::tools::Command>& commands, int 
     }
 }
 
+// `raster --version`: the version, and which of the SIMD layer's paths (raster/simd/) this build
+// compiled and this processor can run: what a test run on this machine exercised.
+std::string versionText() {
+    auto yes = [](bool b) { return b ? "yes" : "no"; };
+#if defined(__SSSE3__)
+    constexpr bool kSse = true;
+#else
+    constexpr bool kSse = false;
+#endif
+#if defined(__AVX2__) && defined(__FMA__)
+    constexpr bool kAvx2 = true;
+#else
+    constexpr bool kAvx2 = false;
+#endif
+    __builtin_cpu_init();
+    const bool cpu_avx512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
+                            __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512vl");
+    std::string text = "raster " RASTER_VERSION "\n";
+    text += std::string("SIMD paths compiled: simd/x86_128 (SSE2, SSSE3) ") + yes(kSse) + ", simd/avx2 (AVX2, FMA) " +
+            yes(kAvx2) + ", simd/avx512 (AVX-512 F, BW, DQ, VL) " + yes(raster::simd::kAvx512) +
+            "; simd/portable where one is not\n";
+    text += std::string("this processor: AVX2 ") + yes(__builtin_cpu_supports("avx2")) + ", AVX-512 F/BW/DQ/VL " +
+            yes(cpu_avx512);
+    return text;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
     CLI::App app("raster: a software rasterizer emulating the Direct3D 11 pipeline", "raster");
     app.require_subcommand(0, 1);
+    app.set_version_flag("--version", versionText());
     const std::vector<raster::tools::Command> commands = {
         raster::tools::addBench(app), raster::tools::addGrade(app), raster::tools::addMicrobench(app), raster::tools::addRender(app),
         raster::tools::addTrace(app), raster::tools::addView(app)};

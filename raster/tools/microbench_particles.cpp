@@ -1,8 +1,8 @@
-// raster microbench's particle benchmarks (registered by microbench.cpp's registerAll; a file of its
-// own so that it does not wait on the pipeline's templates): one simulation step of 1 000 000
-// particles (issue #33's goals: at most 5 ms under gravity, wind and drag on 2 cores; at most 40 ms
-// with curl-noise turbulence), the upload, and the back-to-front sort of 1 000 000 depths, radix
-// against std::sort (goal: at least 5x faster).
+// raster microbench's particle benchmarks (registered by microbench.cpp's registerAll; a file of
+// its own so that it does not wait on the pipeline's templates): one simulation step of 1 000 000
+// particles (the goals: at most 5 ms under gravity, wind and drag on 2 cores; at most 40 ms with
+// curl-noise turbulence; docs/PERFORMANCE.md), the upload, and the back-to-front sort of 1 000 000
+// depths, radix against std::sort (goal: at least 5x faster).
 //
 //   raster microbench --benchmark_filter=Particles    (Arg: threads, or the key count for the sorts)
 #include <benchmark/benchmark.h>

@@ -1,6 +1,7 @@
 // The particle simulation's benchmark workload, shared by `raster bench particles-sim` and
-// raster-microbench's Particles benchmarks (issue #33's goals: one step of 1 000 000 particles under
-// gravity, wind and drag in at most 5 ms on 2 cores; with curl-noise turbulence, at most 40 ms).
+// raster-microbench's Particles benchmarks (docs/PERFORMANCE.md's goals: one step of 1 000 000
+// particles under gravity, wind and drag in at most 5 ms on 2 cores; with curl-noise turbulence, at
+// most 40 ms).
 #pragma once
 
 #include <cstdint>

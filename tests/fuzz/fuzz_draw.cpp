@@ -196,7 +196,7 @@ uint32_t pickOffset(FuzzedDataProvider& in) {
         case 0:
             return kAppendAlignedElement;
         case 1:
-            return 0xFFFFFFFCu;  // issue 30: wrapped around in 32 bits
+            return 0xFFFFFFFCu;  // offset + element size wraps around in 32 bits
         case 2:
             return 0xFFFFFFF0u - 4u * in.ConsumeIntegralInRange<uint32_t>(0, 3);
         case 3:
@@ -231,7 +231,7 @@ constexpr size_t kMaxStride = 64;
 int32_t pickScissor(FuzzedDataProvider& in) {
     switch (in.ConsumeIntegralInRange<int>(0, 7)) {
         case 0:
-            return INT_MIN;  // issue 30: right − 1 overflowed
+            return INT_MIN;  // right − 1 overflows a 32-bit int
         case 1:
             return INT_MIN + 1;
         case 2:

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Runs each libFuzzer target for a while on its kept corpus (README, "Fuzzing").
+# Runs each libFuzzer target for a while on its kept corpus (docs/TESTING.md, "Fuzzing").
 #
 #   tests/fuzz/run.sh <build-dir> <seconds> [--merge] [target ...]
 #

@@ -1,5 +1,6 @@
 # Steps plain_draw (tests/gdb/plain_draw.cpp) in gdb and checks that the plain path goes through the
-# stages in the pipeline's order, each in its own file (issue 31's teaching build):
+# stages in the pipeline's order, each in its own file (docs/DESIGN.md, "The plain path, for reading
+# and stepping"):
 #
 #   gdb -batch -nx -x tests/gdb/plain_steps.py build/bin/plain_draw
 #

@@ -1,5 +1,6 @@
-// The diagnosis of raster grade (issue 32): given one pixel's history in the submission's render and in
-// the solution's, name the first pipeline stage where they part, in words a student can act on.
+// The diagnosis of raster grade (docs/GRADING.md): given one pixel's history in the submission's
+// render and in the solution's, name the first pipeline stage where they part, in words a student
+// can act on.
 //
 //   const raster::grade::Diagnosis d = raster::grade::diagnosePixel(submission_trace, solution_trace, x, y);
 //   d.stage     DiagnosisStage::Blend

@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <thread>
+#include <utility>
 
 #include "grade/diagnose.hpp"
 #include "grade/trace_json.hpp"
@@ -75,6 +76,23 @@ std::string failureReason(const SandboxResult& r) {
             break;
     }
     return "failed: " + r.description;
+}
+
+// Where a compiler's or linker's output names its first error: the line "file:line:column: error:
+// message" (GCC and clang) or the linker's "undefined reference to ..." line. npos when none does.
+size_t firstToolErrorLine(const std::vector<std::string>& lines) {
+    for (size_t i = 0; i < lines.size(); ++i)
+        if (lines[i].find(": error: ") != std::string::npos || lines[i].find(": fatal error: ") != std::string::npos ||
+            lines[i].find("undefined reference to") != std::string::npos)
+            return i;
+    return std::string::npos;
+}
+
+std::vector<std::string> splitLines(const std::string& text) {
+    std::vector<std::string> lines;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) lines.push_back(line);
+    return lines;
 }
 
 // The user whose tasks RLIMIT_NPROC counts in the child: the one it drops to when the grader is root.
@@ -179,6 +197,7 @@ struct LabBuild {
     std::string scratch;      // the lab's scratch directory: its source, its runner, its images
     std::string runner;       // the runner's path, empty when the build failed
     std::string reason, log;  // why it failed, the compiler's output
+    std::string excerpt;      // the part of the output that says why: around the first error
     FileAccess runFiles;      // what the runner may open
     Isolation isolation = Isolation::Auto;
 };
@@ -317,7 +336,7 @@ std::string refusal(const LabBuild& build, const std::string& lab, const Sandbox
 
 LabBuild buildLab(const LabFile& source, const std::string& lab, const std::string& scratch,
                   const Toolchain& toolchain, const GraderOptions& options, const Confinement& confinement) {
-    LabBuild build{scratch, "", "", "", confinement.run(scratch), confinement.isolation};
+    LabBuild build{scratch, "", "", "", "", confinement.run(scratch), confinement.isolation};
     fs::create_directories(scratch);
     if (source.path.empty()) {
         build.reason = source.problem;
@@ -332,13 +351,30 @@ LabBuild buildLab(const LabFile& source, const std::string& lab, const std::stri
     std::vector<std::string> link = {toolchain.compiler, lab + ".s"};
     link.insert(link.end(), toolchain.linkArgs.begin(), toolchain.linkArgs.end());
     link.insert(link.end(), {"-o", "lab_runner"});
-    for (const std::vector<std::string>& step : {compile, link}) {
+    const std::pair<const char*, const std::vector<std::string>*> steps[] = {{"compile", &compile}, {"link", &link}};
+    for (const auto& [name, argv] : steps) {
         const SandboxResult r =
-            runLimited(step, scratch, options.buildLimits, confinement.build(scratch), confinement.isolation);
-        build.log += r.stdoutText + r.stderrText;
-        if (!(build.reason = refusal(build, lab, r, confinement)).empty()) return build;
+            runLimited(*argv, scratch, options.buildLimits, confinement.build(scratch), confinement.isolation);
+        const std::string output = r.stdoutText + r.stderrText;
+        build.log += output;
+        if (!(build.reason = refusal(build, lab, r, confinement)).empty()) {
+            build.excerpt = tail(output, 30);
+            return build;
+        }
         if (!r.succeeded()) {
-            build.reason = std::string(&step == &compile ? "compile " : "link ") + failureReason(r);
+            // The first error first, where a student looks (a compile error is the submission's code,
+            // a link error a function it declares but does not define), then the lines around it.
+            const std::vector<std::string> lines = splitLines(output);
+            const size_t first = firstToolErrorLine(lines);
+            if (r.outcome == SandboxOutcome::Exited && first != std::string::npos) {
+                build.reason = std::string(name) + " failed: " + lines[first] + " (" + r.description + ")";
+                build.excerpt.clear();
+                for (size_t i = first >= 3 ? first - 3 : 0; i < lines.size() && i < first + 27; ++i)
+                    build.excerpt += lines[i] + "\n";
+            } else {
+                build.reason = std::string(name) + " " + failureReason(r);
+                build.excerpt = tail(output, 30);
+            }
             return build;
         }
     }
@@ -441,7 +477,7 @@ SceneResult gradeScene(const LabBuild& build, const std::string& lab, const Grad
     }
     if (build.runner.empty()) {
         result.reason = build.reason;
-        result.explanation = tail(build.log, 30);
+        result.explanation = build.excerpt;
         return result;
     }
     const std::string png = build.scratch + "/" + scene.name + ".png";

@@ -1,5 +1,5 @@
-// raster grade's engine (issue 32): grades one submission, lab by lab and scene by scene, into a
-// GradeRun that report.hpp writes.
+// raster grade's engine (docs/GRADING.md): grades one submission, lab by lab and scene by scene,
+// into a GradeRun that report.hpp writes.
 //
 // For each lab (grading.hpp says where its scenes are declared):
 //  1. build: the submission's <lab>.cpp (never through a symbolic link) is copied alone into a scratch

@@ -1,4 +1,4 @@
-// What raster grade grades, declared next to each lab (issue 32): nothing in the grader names a lab.
+// What raster grade grades, declared next to each lab (docs/GRADING.md): nothing in the grader names a lab.
 //
 //   labs/<lab>/grading.json        the public scenes: those the lab's README names, which students see
 //                                  and grade themselves on (raster grade --public)

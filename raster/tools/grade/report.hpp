@@ -1,5 +1,5 @@
-// The reports of raster grade (issue 32): what one grading run found — per lab, per scene, a score,
-// a verdict and why — written for each reader:
+// The reports of raster grade (docs/GRADING.md): what one grading run found — per lab, per scene, a
+// score, a verdict and why — written for each reader:
 //  - Gradescope's results.json (writeGradescopeResults), what a student sees on Gradescope;
 //  - JUnit XML (writeJUnitXml), what CI servers (Jenkins, GitLab) show as tests, with the images as
 //    attachments;

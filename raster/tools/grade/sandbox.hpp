@@ -1,6 +1,6 @@
-// The sandbox of raster grade (issue 32): runs one command of a grading run — a submission's build,
-// the render of its scenes — in a child process under limits, and says what became of it in words a
-// grader prints.
+// The sandbox of raster grade (docs/GRADING.md): runs one command of a grading run — a submission's
+// build, the render of its scenes — in a child process under limits, and says what became of it in
+// words a grader prints.
 //
 //   raster::grade::SandboxCommand command;
 //   command.argv = {"cmake", "--build", "build", "-j1"};

@@ -89,6 +89,9 @@ class Viewer {
     Stage stage() const { return stage_; }
     // What the views say about the shown image (the overdraw's maximum, ...), as the HUD shows it.
     const std::vector<std::string>& viewNotes() const { return view_notes_; }
+    // The status lines (top left) as last drawn, and the rows they took: wrapped to the window.
+    const std::vector<std::string>& statusLines() const { return status_lines_; }
+    const std::vector<std::string>& statusRows() const { return status_rows_; }
 
   private:
     void handleEvent(const SDL_Event& event);
@@ -142,6 +145,7 @@ class Viewer {
     std::shared_ptr<RenderedFrame> shown_;
     std::vector<uint8_t> image_;  // RGBA8 of what the window shows: colour, depth as grey, a trace view
     std::vector<std::string> view_notes_;
+    std::vector<std::string> status_lines_, status_rows_;
     uint32_t overdraw_max_ = 0;
     std::string render_error_;
 

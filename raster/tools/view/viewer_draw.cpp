@@ -2,6 +2,7 @@
 #include <SDL.h>
 
 #include <algorithm>
+#include <climits>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
@@ -90,6 +91,27 @@ TextPanel statisticsPanel(const RenderedFrame& frame, size_t drawColumns) {
     if (zero_rows > 0) panel.lines.push_back(std::to_string(zero_rows) + " more are 0 everywhere");
     return panel;
 }
+
+// The key help (actions.cpp: aligned with spaces, for a terminal) as a table for the proportional
+// font: key, tab, what it does. A line whose description starts elsewhere than the first line's
+// stays one line of text.
+std::vector<std::string> helpTable(const std::vector<std::string>& help) {
+    const auto description = [](const std::string& line) {
+        const size_t gap = line.find("  ");
+        return gap == std::string::npos ? gap : line.find_first_not_of(' ', gap);
+    };
+    const size_t column = help.empty() ? std::string::npos : description(help[0]);
+    std::vector<std::string> table;
+    for (const std::string& line : help) {
+        const size_t at = description(line);
+        table.push_back(at != std::string::npos && at == column
+                            ? line.substr(0, line.find("  ")) + '\t' + line.substr(at)
+                            : line);
+    }
+    return table;
+}
+
+constexpr std::string_view kMoreHelp = ": raster view --help lists every key";
 
 }  // namespace
 
@@ -254,9 +276,10 @@ void Viewer::composeWindow() {
 
     int window_width = 0, window_height = 0;
     SDL_GetRendererOutputSize(renderer_, &window_width, &window_height);
-    const int scale = window_width >= 900 ? 2 : 1;
+    const int scale = overlayScale(window_width);
+    const int room_x = window_width - 2 * kPanelMargin;  // the widest a panel may be, in window pixels
     TextPanel hud;
-    hud.x = hud.y = 4;
+    hud.x = hud.y = kPanelMargin;
     if (shown_) {
         hud.lines.push_back(options_.scene + "  " + std::to_string(shown_->color.width()) + "x" +
                             std::to_string(shown_->color.height()) + "  frame " +
@@ -278,19 +301,28 @@ void Viewer::composeWindow() {
         hud.lines.push_back(progressText(running, total));
     }
     if (!render_error_.empty()) hud.lines.push_back("render failed: " + render_error_);
+    status_lines_ = hud.lines;
+    hud = fitPanel(std::move(hud), room_x, window_height - 2 * kPanelMargin, scale);
+    status_rows_ = hud.lines;
     drawPanel(renderer_, hud, scale);
     // Help and statistics take turns below the status lines (H and I switch between them).
-    const int below_hud = 4 + panelSize(hud, scale).y + 4;
+    const int below_hud = kPanelMargin + (hud.lines.empty() ? 0 : panelSize(hud, scale).y + kPanelMargin);
+    const int room_below = window_height - below_hud - kPanelMargin;
     if (help_) {
         TextPanel help;
-        help.x = 4, help.y = below_hud;
-        help.lines = keyHelp();
+        help.x = kPanelMargin, help.y = below_hud;
+        help.lines = helpTable(keyHelp());
         help.color = {255, 240, 160, 255};
-        drawPanel(renderer_, help, scale);
+        // Small rather than cut where the large text leaves no room for all of it.
+        int help_scale = scale;
+        if (help_scale > 1 && panelSize(fitPanel(help, room_x, INT_MAX, scale), scale).y > room_below)
+            help_scale = 1;
+        drawPanel(renderer_, fitPanel(std::move(help), room_x, room_below, help_scale, kMoreHelp),
+                  help_scale);
     } else if (statistics_ && shown_) {
         TextPanel statistics = statisticsPanel(*shown_, scale == 2 ? 3 : 1);
-        statistics.x = -4, statistics.y = below_hud;
-        drawPanel(renderer_, statistics, scale);
+        statistics.x = -kPanelMargin, statistics.y = below_hud;
+        drawPanel(renderer_, fitPanel(std::move(statistics), room_x, room_below, scale), scale);
     }
     if (!shown_) return;
     const uint32_t w = shown_->color.width(), h = shown_->color.height();
@@ -301,7 +333,7 @@ void Viewer::composeWindow() {
             "fragments per pixel", "",
             overdraw_max_ == 1 ? "1 (white)" : "1\t" + std::to_string(overdraw_max_) + " (white)"};
         const SDL_Point size = panelSize(legend, scale);
-        legend.x = -4, legend.y = window_height - size.y - 4;
+        legend.x = -kPanelMargin, legend.y = window_height - size.y - kPanelMargin;
         drawPanel(renderer_, legend, scale);
         const int left = panelLeft(renderer_, legend, scale) + kPanelPadding * scale;
         const int top = legend.y + (kPanelPadding + kPanelLineHeight + 1) * scale;
@@ -334,7 +366,8 @@ void Viewer::composeWindow() {
         history.lines = {"pixel (" + std::to_string(pixel_x_) + ", " + std::to_string(pixel_y_) +
                          "): tracing..."};
     history.color = {200, 255, 220, 255};
-    history.x = 4, history.y = window_height - panelSize(history, scale).y - 4;
+    history = fitPanel(std::move(history), room_x, window_height - 2 * kPanelMargin, scale);
+    history.x = kPanelMargin, history.y = window_height - panelSize(history, scale).y - kPanelMargin;
     drawPanel(renderer_, history, scale);
 }
 

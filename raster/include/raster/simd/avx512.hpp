@@ -3,9 +3,11 @@
 // kernels of avx2.hpp, so the same bits, in half the instructions. The names are chosen, and
 // documented, in ops.hpp.
 //
-// Not run on the machine where raster is developed (a Zen 3, which has no AVX-512): the tests that
-// compare these kernels with the eight-lane ones (texture_test, output_merger_test) run wherever
-// the build targets AVX-512, and skip elsewhere.
+// Tested where the build targets AVX-512 (simd_ops_test, texture_test, output_merger_test compare these
+// kernels with the eight-lane and portable ones). Elsewhere this header is not compiled; there,
+// simd_ops_test checks the portable reference against the kernels' outputs recorded on an AVX-512
+// machine (tests/data/simd/avx512_kernels.txt), and fails when this header's text has changed since
+// that recording (docs/RELIABILITY.md, "The SIMD paths").
 #pragma once
 
 #include <cstdint>
@@ -82,7 +84,10 @@ inline __m512 join(F32x8 lo, F32x8 hi) { return _mm512_insertf32x8(_mm512_castps
     const __m512i offset = _mm512_sub_epi32(index, first);  // unsigned: a lane left of its row's first fails
     static_assert(kFootprintPlaneWindow == 16, "VPERMT2D's second register begins at index 16");
     __m512i channel[4];
-    if (_mm512_cmplt_epu32_mask(offset, _mm512_set1_epi32(kFootprintPlaneWindow)) == 0xFFFF) [[likely]] {
+    // KORTESTW's carry (every bit set) instead of the mask compared as an integer: the mask is never
+    // widened to 32 bits (see noOpLanes).
+    const __mmask16 in_window = _mm512_cmplt_epu32_mask(offset, _mm512_set1_epi32(kFootprintPlaneWindow));
+    if (_kortestc_mask16_u8(in_window, in_window)) [[likely]] {
         const __m512i pick =
             _mm512_or_si512(offset, _mm512_setr_epi32(0, 0, 0, 0, 16, 16, 16, 16, 0, 0, 0, 0, 16, 16, 16, 16));
         const int32_t* top = planes + uint32_t(_mm512_cvtsi512_si32(index));
@@ -114,6 +119,17 @@ inline __m512 join(F32x8 lo, F32x8 hi) { return _mm512_insertf32x8(_mm512_castps
     }
 }
 
+// The lanes of sa that equal 0 (ordered compare: NaN is not 0), bit l for lane l, in a
+// general-purpose register through VMOVMSKPS on each half. Not a compare into a mask register: GCC 12
+// spills such a 16-bit mask with KMOVW and, at -Og, reloads the slot as 32 bits, so bits 16–31 of a
+// uint32_t made from it held stack garbage (SimdOps.EightPixelAdditiveBlendIsTheOnePixelBlendInEveryLane).
+[[gnu::always_inline]] inline uint32_t noOpLanes(__m512 sa) {
+    const __m256 zero = _mm256_setzero_ps();
+    const int lo = _mm256_movemask_ps(_mm256_cmp_ps(_mm512_castps512_ps256(sa), zero, _CMP_EQ_OQ));
+    const int hi = _mm256_movemask_ps(_mm256_cmp_ps(_mm512_extractf32x8_ps(sa, 1), zero, _CMP_EQ_OQ));
+    return uint32_t(lo) | uint32_t(hi) << 8;
+}
+
 // avx2::additiveBlendRgba8 for two side-by-side blocks, loaded, blended under `mask` (bit l: lane l,
 // block 1 in bits 8–15) and stored here. Returns the lanes whose saturated alpha is 0.
 [[gnu::always_inline]] inline uint32_t additiveBlendRgba8Pair(uint8_t* row0, uint8_t* row1,
@@ -126,7 +142,7 @@ inline __m512 join(F32x8 lo, F32x8 hi) { return _mm512_insertf32x8(_mm512_castps
     const __m512i old = _mm512_permutexvar_epi64(quarters, rows);
     const __m512 zero = _mm512_setzero_ps(), one = _mm512_set1_ps(1.0f), half = _mm512_set1_ps(0.5f);
     const __m512 sa = _mm512_min_ps(_mm512_max_ps(join(rgba[3][0], rgba[3][1]), zero), one);  // saturate's order
-    const uint32_t no_ops = _mm512_cmpeq_ps_mask(sa, zero);
+    const uint32_t no_ops = noOpLanes(sa);
     const __m512 sa255 = _mm512_mul_ps(sa, _mm512_set1_ps(255.0f));
     const __m512i a = _mm512_cvttps_epi32(_mm512_add_ps(_mm512_mul_ps(sa, sa255), half));
     auto units = [&](const F32x8 (&s)[2]) {  // avx2::additiveBlendRgba8's units

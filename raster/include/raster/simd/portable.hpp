@@ -115,6 +115,27 @@ inline I32x8 additiveBlendRgba8(I32x8 dest, F32x8 r, F32x8 g, F32x8 b, F32x8 alp
     return out;
 }
 
+// avx512::additiveBlendRgba8Pair without AVX-512: additiveBlendRgba8 on each block of the pair (block
+// k's rows at bytes 16k..16k + 15 of row0 and row1), lanes outside `mask` left as they were. Returns
+// the lanes whose saturated alpha is 0 (bit l of block k at 8k + l). The reference the AVX-512
+// kernel is tested and recorded against (tests/simd_ops_test.cpp).
+inline uint32_t additiveBlendRgba8Pair(uint8_t* row0, uint8_t* row1, const F32x8 (&rgba)[4][2], uint32_t mask) {
+    uint32_t no_ops = 0;
+    for (int k = 0; k < 2; ++k) {
+        I32x8 dest;
+        std::memcpy(&dest, row0 + 16 * k, 16);
+        std::memcpy(reinterpret_cast<uint8_t*>(&dest) + 16, row1 + 16 * k, 16);
+        const I32x8 sum = additiveBlendRgba8(dest, rgba[0][k], rgba[1][k], rgba[2][k], rgba[3][k]);
+        for (int l = 0; l < 8; ++l) {
+            const float sa = min(max(rgba[3][k], splat(0.0f)), splat(1.0f))[l];
+            no_ops |= uint32_t(sa == 0.0f) << (8 * k + l);
+            const int32_t pixel = sum[l];
+            if (mask >> (8 * k + l) & 1) std::memcpy((l < 4 ? row0 : row1) + 16 * k + 4 * (l % 4), &pixel, 4);
+        }
+    }
+    return no_ops;
+}
+
 // One pixel's four channels, with the same rules as sse::storeUnorm8x4 and sse::additiveBlendUnorm8x4.
 inline F32x4 saturate4(F32x4 v) {
     const F32x4 zero = {}, one = zero + 1.0f;
