@@ -140,7 +140,7 @@ struct ChildPlan {
     uid_t uid = 0;
     gid_t gid = 0;
     int stdinFd = -1, stdoutFd = -1, stderrFd = -1, reportFd = -1;
-    int landlockRuleset = -1;  // applied before anything else the child does; -1: none
+    int landlockRuleset = -1;  // applied once the standard streams are in place; -1: none
     pid_t parent = 0;
 };
 

@@ -25,8 +25,7 @@
 //  - an environment of its own: PATH, HOME, TMPDIR and LANG=C only (defaultSandboxEnvironment),
 //    unless the command gives one;
 //  - death with its parent (PR_SET_PDEATHSIG SIGKILL), so that a grader killed mid-run leaves no
-//    submission running.
-//
+//    submission running;
 //  - with `files` set, only those files (isolation.hpp): Landlock where the kernel has it, else
 //    bubblewrap where it runs, else nothing beyond the user's permissions (result.isolation and
 //    result.warnings say which held).
