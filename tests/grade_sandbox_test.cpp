@@ -195,11 +195,14 @@ TEST(Sandbox, CpuSpinIsStoppedAtTheCpuLimit) {
     struct Case {
         const char* mode;
         int signal;
-        double least, most;  // CPU seconds (the kernel checks the limit at its clock's ticks)
+        // CPU seconds. The kernel checks the limit at its clock's ticks, against a tick-sampled time that
+        // may run ahead of the precise one getrusage reports: killed at the 2 s hard limit, a spin
+        // reported 1.864 s with two cores at load 8 (Intel Xeon, 2026-12-04).
+        double least, most;
         const char* description;
     };
-    for (const Case& k : {Case{"spin", SIGXCPU, 0.9, 2.5, "CPU-time limit of 1 s exceeded: SIGXCPU after "},
-                          Case{"spin-ignoring-sigxcpu", SIGKILL, 1.9, 3.5,
+    for (const Case& k : {Case{"spin", SIGXCPU, 0.75, 2.5, "CPU-time limit of 1 s exceeded: SIGXCPU after "},
+                          Case{"spin-ignoring-sigxcpu", SIGKILL, 1.6, 3.5,
                                "CPU-time limit of 1 s exceeded: SIGKILL at the hard limit after "}}) {
         ScratchDirectory scratch;
         SandboxCommand c = command({kMisbehave, k.mode}, scratch);
