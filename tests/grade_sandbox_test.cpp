@@ -2,7 +2,8 @@
 // one, a crash, a hang (with a grandchild holding the pipes), a CPU spin, a runaway allocation, a
 // fork bomb, an oversized file, a flood of output — named as a grader prints it, with its figures,
 // under small limits (tests/grade_misbehave.cpp does the misbehaving); the drop from root to nobody;
-// and after each, no process of the child's group left alive and no child of the test unreaped.
+// the file-system isolation (Landlock, bubblewrap, none: what the child may read and write); and after
+// each, no process of the child's group left alive and no child of the test unreaped.
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <pwd.h>
@@ -194,11 +195,14 @@ TEST(Sandbox, CpuSpinIsStoppedAtTheCpuLimit) {
     struct Case {
         const char* mode;
         int signal;
-        double least, most;  // CPU seconds (the kernel checks the limit at its clock's ticks)
+        // CPU seconds. The kernel checks the limit at its clock's ticks, against a tick-sampled time that
+        // may run ahead of the precise one getrusage reports: killed at the 2 s hard limit, a spin
+        // reported 1.864 s with two cores at load 8 (Intel Xeon, 2026-12-04).
+        double least, most;
         const char* description;
     };
-    for (const Case& k : {Case{"spin", SIGXCPU, 0.9, 2.5, "CPU-time limit of 1 s exceeded: SIGXCPU after "},
-                          Case{"spin-ignoring-sigxcpu", SIGKILL, 1.9, 3.5,
+    for (const Case& k : {Case{"spin", SIGXCPU, 0.75, 2.5, "CPU-time limit of 1 s exceeded: SIGXCPU after "},
+                          Case{"spin-ignoring-sigxcpu", SIGKILL, 1.6, 3.5,
                                "CPU-time limit of 1 s exceeded: SIGKILL at the hard limit after "}}) {
         ScratchDirectory scratch;
         SandboxCommand c = command({kMisbehave, k.mode}, scratch);
@@ -422,6 +426,115 @@ TEST(Sandbox, RefusesACommandItCannotRun) {
     SandboxCommand stranger = command({"true"}, scratch);
     stranger.dropToUser = "no-such-user-for-the-sandbox";
     EXPECT_EQ(code(stranger), ErrorCode::InvalidArgument);
+}
+
+// ---- File-system isolation (isolation.hpp) ----
+
+// A scratch directory holding work/ (the child's to write), shared/given.txt (to read) and
+// secret/hidden.txt (neither), all the child's user's: only the isolation keeps it from the last.
+struct IsolationScene {
+    ScratchDirectory scratch;
+    IsolationScene() {
+        for (const char* folder : {"/work", "/shared", "/secret"})
+            std::filesystem::create_directory(scratch.path() + folder);
+        std::ofstream(scratch.path() + "/shared/given.txt") << "given\n";
+        std::ofstream(scratch.path() + "/secret/hidden.txt") << "hidden\n";
+    }
+    // The child reads both files, writes beside each and in work/, and lists what it could.
+    SandboxResult run(Isolation isolation) const {
+        SandboxCommand c = command({"sh", "-c",
+                                    "cat shared/given.txt; cat secret/hidden.txt; echo x > shared/new;"
+                                    "echo x > secret/new; echo made > work/made && cat work/made"},
+                                   scratch);
+        c.files = FileAccess{{"/usr", "/bin", "/lib", "/lib64", "/etc", scratch.path() + "/shared"},
+                             {scratch.path() + "/work"}};
+        c.isolation = isolation;
+        return runSandboxed(c);
+    }
+    bool exists(const std::string& relative) const {
+        return std::filesystem::exists(scratch.path() + "/" + relative);
+    }
+};
+
+// What each isolation must let through and keep out: given.txt read, work/made written; hidden.txt
+// not read, nothing written outside work/.
+void expectConfined(const IsolationScene& scene, const SandboxResult& r, const std::string& denial) {
+    EXPECT_TRUE(r.succeeded()) << r.description << "\n" << r.stderrText;
+    EXPECT_EQ(r.stdoutText, "given\nmade\n") << "read the readable, wrote the writable, read nothing else";
+    EXPECT_NE(r.stderrText.find("secret/hidden.txt: " + denial), std::string::npos) << r.stderrText;
+    EXPECT_FALSE(scene.exists("shared/new")) << "wrote into a folder it may only read";
+    EXPECT_FALSE(scene.exists("secret/new")) << "wrote into a folder it may not reach";
+    EXPECT_TRUE(r.warnings.empty()) << r.warnings[0];
+    expectNothingLeft(r);
+}
+
+TEST(SandboxIsolation, LandlockLetsTheChildOpenOnlyItsFiles) {
+    std::string why;
+    const int abi = landlockAbi(&why);
+    if (abi == 0) GTEST_SKIP() << "Landlock isolation not tested: " << why;
+    const IsolationScene scene;
+    const SandboxResult r = scene.run(Isolation::Landlock);
+    EXPECT_EQ(r.isolation, Isolation::Landlock);
+    expectConfined(scene, r, "Permission denied");
+    const IsolationChoice choice = isolationFor(std::string("nobody"));
+    EXPECT_EQ(choice.isolation, Isolation::Landlock);
+    EXPECT_EQ(choice.description, "Landlock ABI " + std::to_string(abi));
+}
+
+TEST(SandboxIsolation, BubblewrapShowsTheChildOnlyItsFiles) {
+    if (findBubblewrap().empty())
+        GTEST_SKIP() << "bubblewrap isolation not tested: no bwrap (.ci/setup installs it)";
+    const IsolationScene scene;
+    const SandboxResult r = scene.run(Isolation::Bubblewrap);
+    if (r.exitStatus == 1 && r.stderrText.rfind("bwrap:", 0) == 0)
+        GTEST_SKIP() << "bubblewrap isolation not tested: bwrap does not run here: " << r.stderrText;
+    EXPECT_EQ(r.isolation, Isolation::Bubblewrap);
+    expectConfined(scene, r, "No such file or directory");
+}
+
+// bwrap reports its child's death by signal N as exit status 128 + N: read back as the signal.
+TEST(SandboxIsolation, BubblewrapChildsCrashNamesTheSignal) {
+    if (findBubblewrap().empty())
+        GTEST_SKIP() << "bubblewrap isolation not tested: no bwrap (.ci/setup installs it)";
+    ScratchDirectory scratch;
+    SandboxCommand c = command({kMisbehave, "crash"}, scratch);
+    c.files = FileAccess{{"/usr", "/lib", "/lib64", kMisbehave}, {scratch.path()}};
+    c.isolation = Isolation::Bubblewrap;
+    const SandboxResult r = runSandboxed(c);
+    if (r.exitStatus == 1)
+        GTEST_SKIP() << "bubblewrap isolation not tested: bwrap does not run here: " << r.stderrText;
+    EXPECT_EQ(r.outcome, SandboxOutcome::Signaled) << r.description;
+    EXPECT_EQ(r.signal, SIGSEGV);
+    EXPECT_EQ(r.description, "killed by signal 11: segmentation fault (SIGSEGV)");
+    expectNothingLeft(r);
+}
+
+// Without isolation the same child reads and writes everything its user may, and the result says so:
+// the scene above keeps nothing out by itself.
+TEST(SandboxIsolation, NoneLetsTheChildReachEverythingAndSaysSo) {
+    const IsolationScene scene;
+    const SandboxResult r = scene.run(Isolation::None);
+    EXPECT_TRUE(r.succeeded()) << r.description;
+    EXPECT_EQ(r.isolation, Isolation::None);
+    EXPECT_EQ(r.stdoutText, "given\nhidden\nmade\n");
+    EXPECT_TRUE(scene.exists("shared/new") && scene.exists("secret/new"));
+    ASSERT_EQ(r.warnings.size(), 1u);
+    EXPECT_EQ(r.warnings[0], "no file-system isolation: the command asked for none");
+    expectNothingLeft(r);
+}
+
+TEST(SandboxIsolation, NamesReadBackAndAStrangeOneIsRefused) {
+    for (Isolation i : {Isolation::Auto, Isolation::Landlock, Isolation::Bubblewrap, Isolation::None})
+        EXPECT_EQ(parseIsolation(isolationName(i)), i);
+    EXPECT_EQ(parseIsolation("bwrap"), Isolation::Bubblewrap);
+    try {
+        parseIsolation("chroot");
+        ADD_FAILURE() << "parseIsolation took 'chroot'";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ErrorCode::InvalidArgument);
+        EXPECT_NE(std::string(e.what()).find("one of auto, landlock, bubblewrap (or bwrap), none"),
+                  std::string::npos);
+    }
 }
 
 }  // namespace

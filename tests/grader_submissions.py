@@ -2,7 +2,12 @@
 """tests/grader's wrong submissions, made from today's solutions (tests/grader/README.md).
 
 Each submission is a folder tests/grader/<name>/ of patches, <lab>.patch for each lab it holds: a
-unified diff against solutions/<lab>/<lab>.cpp whose text before the diff says what the change is.
+unified diff against solutions/<lab>/<lab>.cpp whose text before the diff says what the change is;
+and, for a submission that holds symbolic links (which a patch cannot carry), a file `links`: lines
+"<path in the submission> -> <target>", `#` lines comments. A patch's lines and a link's target may
+hold @REPO@, replaced by the source tree's absolute path, and @CLASS@, by the folder of the class
+that grade_cli_test.py's hostile case grades (the hostile submissions reach for paths of the machine
+they are graded on, which differ from checkout to checkout).
 The grade tests (grade_cli_test.py, gradescope_test.py) build the submission, laid out like labs/
 (<name>/<lab>/<lab>.cpp), in a folder of their own with `materialise`; a patch that no longer applies
 stops them with an error naming the patch, the hunk and the solution.
@@ -20,6 +25,7 @@ import sys
 
 GRADER = os.path.join("tests", "grader")
 NOT_SUBMISSIONS = {"root"}  # tests/grader/root is a grading root (the small scenes), not a submission
+LINKS = "links"
 HUNK = re.compile(r"^@@ -(\d+)(?:,(\d+))? \+(\d+)(?:,(\d+))? @@")
 
 
@@ -34,18 +40,44 @@ def submission_names(source):
 
 
 def patches_of(source, name):
-    """{lab: path of its patch} for submission `name`; a folder holding anything else is an error."""
+    """{lab: path of its patch} for submission `name`; a folder holding anything but patches and a
+    `links` file, or neither, is an error."""
     folder = os.path.join(source, GRADER, name)
     patches, others = {}, []
     for entry in sorted(os.listdir(folder)):
         if entry.endswith(".patch") and os.path.isfile(os.path.join(folder, entry)):
             patches[entry[:-len(".patch")]] = os.path.join(folder, entry)
-        else:
+        elif entry != LINKS or not os.path.isfile(os.path.join(folder, entry)):
             others.append(entry)
-    if others or not patches:
-        raise PatchError(f"{os.path.join(GRADER, name)} must hold only <lab>.patch files, at least one "
-                         f"(found {', '.join(others) or 'none'})")
+    if others or not (patches or links_of(source, name)):
+        raise PatchError(f"{os.path.join(GRADER, name)} must hold only <lab>.patch files and a `{LINKS}` "
+                         f"file, at least one of them (found {', '.join(others) or 'none'})")
     return patches
+
+
+def links_of(source, name):
+    """[(path in the submission, target)] of submission `name`'s `links` file ([] without one)."""
+    path = os.path.join(source, GRADER, name, LINKS)
+    if not os.path.isfile(path):
+        return []
+    links = []
+    with open(path, encoding="utf-8") as f:
+        for number, line in enumerate(f, 1):
+            if not line.strip() or line.startswith("#"):
+                continue
+            relative, arrow, target = (part.strip() for part in line.partition(" -> "))
+            if not arrow or not relative or not target or os.path.isabs(relative) or ".." in relative.split("/"):
+                raise PatchError(f"{os.path.relpath(path, source)}:{number}: not \"<path in the submission> -> "
+                                 f"<target>\" with a relative path that stays inside: {line.rstrip()!r}")
+            links.append((relative, target))
+    return links
+
+
+def substitute(text, places):
+    """`text` with each placeholder of `places` ({"@REPO@": path, ...}) replaced."""
+    for placeholder, value in places.items():
+        text = text.replace(placeholder, value)
+    return text
 
 
 def parse(text, where):
@@ -120,15 +152,24 @@ def build(source, name, lab, patch):
         return apply(original, f.read(), os.path.relpath(patch, source), solution)
 
 
-def materialise(source, name, target):
+def materialise(source, name, target, places=None):
     """Writes submission `name` as target/name/<lab>/<lab>.cpp, each lab's solution with its patch
-    applied, and returns target/name (the folder `raster grade` takes)."""
+    applied, makes its links, and returns target/name (the folder `raster grade` takes). `places`:
+    the placeholders' values (default: @REPO@ the source tree, resolved)."""
+    places = places or {"@REPO@": os.path.realpath(source)}
     folder = os.path.join(target, name)
+    os.makedirs(folder, exist_ok=True)
     for lab, patch in patches_of(source, name).items():
-        text = build(source, name, lab, patch)
+        text = substitute(build(source, name, lab, patch), places)
         os.makedirs(os.path.join(folder, lab), exist_ok=True)
         with open(os.path.join(folder, lab, f"{lab}.cpp"), "w", encoding="utf-8") as f:
             f.write(text)
+    for relative, link_target in links_of(source, name):
+        path = os.path.join(folder, relative)
+        os.makedirs(os.path.dirname(path), exist_ok=True)
+        if os.path.lexists(path):
+            os.remove(path)
+        os.symlink(substitute(link_target, places), path)
     return folder
 
 
@@ -171,6 +212,7 @@ def check(source):
                if n not in names]
     for name in names:
         try:
+            links_of(source, name)
             for lab, patch in patches_of(source, name).items():
                 build(source, name, lab, patch)
                 count += 1

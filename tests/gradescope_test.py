@@ -247,6 +247,7 @@ def grade_errors(source, root, env, made):
     for name, files, check in cases:
         fill_submission(root, files)
         errors += case_errors(name, run_autograder(root, env), check)
+    errors += unisolated_errors(source, root, env, made)
     # A grader that is gone (a failed setup.sh): still a valid results.json, 0, the reason given.
     build = os.path.join(root, "source", "build")
     os.rename(build, build + ".away")
@@ -255,6 +256,31 @@ def grade_errors(source, root, env, made):
             "setup.sh" in r.get("output", "")) else [f"score {r['score']}, output {r.get('output')!r}"])
     finally:
         os.rename(build + ".away", build)
+    return errors
+
+
+def unisolated_errors(source, root, env, made):
+    """What holds on Gradescope where the kernel's isolation does not (a container whose seccomp refuses
+    Landlock, without user namespaces for bubblewrap): `--isolation none`, as root, so that the
+    submission runs as nobody and setup.sh's locks are all that keep it out. The hostile submission
+    that includes the solution by its absolute path, and the one that reads it at run time
+    (tests/grader/, @REPO@ this folder laid out like /autograder/source), score nothing and read
+    nothing."""
+    if os.geteuid() != 0:
+        print("gradescope: not root: the submission would run as this user; the locks are not checked")
+        return []
+    places = {"@REPO@": os.path.join(root, "source")}
+    solution = os.path.join(root, "source", "solutions", LAB, f"{LAB}.cpp")
+    env = dict(env, RASTER_AUTOGRADER_ISOLATION="none")
+    errors = []
+    for name, words in (("include_absolute", f"compile refused: your file includes {solution}, which is not part"),
+                        ("print_solution", f"cannot read {solution}: Permission denied")):
+        made_file = os.path.join(grader_submissions.materialise(source, name, made, places), LAB, f"{LAB}.cpp")
+        fill_submission(root, {f"{LAB}/{LAB}.cpp": made_file})
+        errors += case_errors(f"{name}, unisolated", run_autograder(root, env), lambda r, words=words: [] if (
+            r["tests"] and r["score"] == 0 and "sandbox: no file-system isolation" in r["output"]
+            and all(words in t["output"] and "LEAKED" not in t["output"] for t in r["tests"]))
+            else [f"score {r['score']}, or a scene without {words!r} or with LEAKED: {r['tests'][:1]}"])
     return errors
 
 

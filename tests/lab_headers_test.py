@@ -8,7 +8,10 @@ holds a solution (raster/src/lecture/, solutions/). Nor does it parse the templa
 
 Reads <build-dir>/compile_commands.json, reruns each lab's compile command with -MM (the headers it
 includes, nothing compiled) and fails naming the lab and the header. Fails too if it finds no lab,
-so that a build without labs cannot pass it by having nothing to check.
+so that a build without labs cannot pass it by having nothing to check. The same for a submission's
+compile in raster grade (<build-dir>/bin/grade_toolchain.json): none of its include folders holds an
+answer or the grader's sources (raster/tools), since the grader lets a submission include whatever lies
+beneath them.
 """
 import json
 import os
@@ -28,7 +31,7 @@ def main(build_dir, source_dir):
     if not labs:
         print("lab_headers_test: no lab translation unit in %s/compile_commands.json" % build_dir)
         return 1
-    failed = 0
+    failed = toolchain_errors(build_dir, source_dir, answers)
     for entry in labs:
         lab = os.path.relpath(entry["file"], source_dir)
         args = shlex.split(entry["command"]) if "command" in entry else entry["arguments"]
@@ -67,6 +70,29 @@ def main(build_dir, source_dir):
                       "raster/teaching_draw.hpp)" % (lab, path))
                 failed = 1
         print("lab_headers_test: %s: %d headers, none holding a solution" % (lab, len(headers)))
+    return failed
+
+
+def toolchain_errors(build_dir, source_dir, answers):
+    """1 if grade_toolchain.json puts an answer's folder, or raster/tools, on a submission's include path."""
+    path = os.path.join(build_dir, "bin", "grade_toolchain.json")
+    if not os.path.isfile(path):
+        print("lab_headers_test: no %s (raster_tool writes it)" % path)
+        return 1
+    with open(path) as f:
+        toolchain = json.load(f)
+    include_dirs = [os.path.realpath(a[2:]) for a in toolchain["compile"] if a.startswith("-I") and len(a) > 2]
+    if not include_dirs:
+        print("lab_headers_test: %s names no include folder" % path)
+        return 1
+    forbidden = answers + [os.path.join(source_dir, "raster", "tools")]
+    failed = 0
+    for d in include_dirs:
+        # A folder that holds one of them, or lies in one: a submission could #include it either way.
+        if any(d == f or d.startswith(f + os.sep) or f.startswith(d + os.sep) for f in forbidden):
+            print("lab_headers_test: grade_toolchain.json has -I%s, which holds or lies in one of %s" % (d, forbidden))
+            failed = 1
+    print("lab_headers_test: grade_toolchain.json's include folders: %s" % ", ".join(include_dirs))
     return failed
 
 

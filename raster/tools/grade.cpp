@@ -25,6 +25,7 @@ struct GradeArgs {
     std::string submission, out = "grade-report", toolchain;
     grade::GraderOptions options = grade::defaultGraderOptions();
     uint32_t jobs = 1, renderSeconds = 30, buildSeconds = 300, threads = 1, renderMemory = 2048;
+    std::string isolation = "auto";
 };
 
 // grade_toolchain.json beside this program (CMake writes it into build/bin).
@@ -45,7 +46,9 @@ int runGrade(GradeArgs& args) {
     o.renderLimits.addressSpaceBytes = uint64_t(args.renderMemory) * grade::kMiB;
     o.buildLimits.wallSeconds = args.buildSeconds;
     o.buildLimits.cpuSeconds = args.buildSeconds;
+    o.isolation = grade::parseIsolation(args.isolation);
     const grade::GradeRun run = grade::gradeSubmission(args.submission, o);
+    std::fputs(run.output.c_str(), stdout);
     grade::writeReports(run, args.out);
     std::fputs(grade::terminalSummary(run).c_str(), stdout);
     std::printf("reports in %s: results.json, junit.xml, report.html\n", args.out.c_str());
@@ -88,6 +91,12 @@ Command addGrade(CLI::App& app) {
         ->capture_default_str();
     command->add_option("--toolchain", args->toolchain, "grade_toolchain.json (default: beside this program)")
         ->check(CLI::ExistingFile);
+    command
+        ->add_option("--isolation", args->isolation,
+                     "how the submission's build and runs are kept to their files: auto (Landlock, else "
+                     "bubblewrap, else none), landlock, bubblewrap, none")
+        ->check(CLI::IsMember({"auto", "landlock", "bubblewrap", "none"}))
+        ->capture_default_str();
     command->add_flag("--keep-scratch", args->options.keepScratch,
                       "keep the scratch directory (builds, images)");
     return {command, [args] { return runGrade(*args); }};

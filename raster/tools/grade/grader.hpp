@@ -2,13 +2,18 @@
 // into a GradeRun that report.hpp writes.
 //
 // For each lab (grading.hpp says where its scenes are declared):
-//  1. build: the submission's <lab>.cpp is copied into a scratch directory (under TMPDIR, never the
-//     source tree) and compiled there with the flags the library was built with (the toolchain file,
-//     grade_toolchain.json beside build/bin/raster, written by CMake), then linked with the lab runner
-//     (lab_runner_main.cpp) and raster_lib: two sandboxed commands (sandbox.hpp), buildLimits each;
-//  2. render: each scene by the submission's runner in the sandbox (renderLimits), to a PNG in the
-//     scratch directory that the grader then reads; the expected image of the same scene by the
-//     solution compiled into this program (<lab>@solution, makeScene), in-process;
+//  1. build: the submission's <lab>.cpp (never through a symbolic link) is copied alone into a scratch
+//     directory (under TMPDIR, never the source tree) and compiled there to assembly with the flags the
+//     library was built with (the toolchain file, grade_toolchain.json beside build/bin/raster, written
+//     by CMake); a compile that read a file neither the lab's nor beneath the compiler's include path
+//     (its -MD list), or whose assembly reads a file (.incbin, .include) or defines a macro, is refused;
+//     then it is assembled and linked with the lab runner (lab_runner_main.cpp) and raster_lib: two
+//     sandboxed commands (sandbox.hpp), buildLimits each, reading only the system's folders, the
+//     include path and the libraries, writing only the scratch directory (isolation.hpp);
+//  2. render: each scene by the submission's runner in the sandbox (renderLimits; reading only the
+//     system's libraries), to a PNG in the scratch directory that the grader then reads; the expected
+//     image of the same scene by the solution compiled into this program (<lab>@solution, makeScene),
+//     in-process;
 //  3. compare with the scene's declared comparison; the scene scores its points when it passes;
 //  4. for a scene that fails, diagnose (diagnose.hpp) at the representative pixel of the largest failing
 //     region: the runner renders again with the trace on that pixel, the solution in-process likewise.
@@ -47,6 +52,8 @@ struct GraderOptions {
     std::string runnerPath = "fast";  // the runner's pipeline: fast, plain or reference (measurements)
     bool keepScratch = false;         // leave the scratch directory (its path is in GradeRun::output)
     SandboxLimits buildLimits, renderLimits;  // processes: added to the user's tasks at each start
+    // How the build and the runs are kept to their files (isolation.hpp; Auto: the best this machine has).
+    Isolation isolation = Isolation::Auto;
 };
 
 // Limits for a course's machine: a build 300 s wall and CPU, 4 GiB; a render 30 s, 2 GiB; 64 more

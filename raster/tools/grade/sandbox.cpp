@@ -24,6 +24,8 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <mutex>
 #include <tuple>
 #include <utility>
 
@@ -88,7 +90,17 @@ Pipe makePipe(const char* what) {
 // ---- The child, between fork and exec ----
 
 // The step before exec that failed, reported to the parent through the start pipe with its errno.
-enum class StartStep : int32_t { Descriptors, Limits, Groups, GroupId, UserId, Directory, ParentDeath, Exec };
+enum class StartStep : int32_t {
+    Descriptors,
+    Isolation,
+    Limits,
+    Groups,
+    GroupId,
+    UserId,
+    Directory,
+    ParentDeath,
+    Exec
+};
 struct StartFailure {
     StartStep step;
     int32_t error;
@@ -98,6 +110,8 @@ const char* startStepText(StartStep step) {
     switch (step) {
         case StartStep::Descriptors:
             return "setting up its standard streams";
+        case StartStep::Isolation:
+            return "landlock_restrict_self";
         case StartStep::Limits:
             return "setrlimit";
         case StartStep::Groups:
@@ -126,6 +140,7 @@ struct ChildPlan {
     uid_t uid = 0;
     gid_t gid = 0;
     int stdinFd = -1, stdoutFd = -1, stderrFd = -1, reportFd = -1;
+    int landlockRuleset = -1;  // applied once the standard streams are in place; -1: none
     pid_t parent = 0;
 };
 
@@ -171,6 +186,10 @@ void resetSignals() {
             failStart(report, StartStep::Descriptors);
     for (int i = 0; i < 3; ++i)
         if (dup2(moved[i], i) < 0) failStart(report, StartStep::Descriptors);
+    // Before the descriptors close (the ruleset is one of them); the drop and chdir below are not
+    // file accesses that Landlock governs, and execvp is one that it does.
+    if (plan.landlockRuleset >= 0 && applyLandlock(plan.landlockRuleset) != 0)
+        failStart(report, StartStep::Isolation);
     closeOthers(report);
     for (const auto& [resource, value] : plan.limits)
         if (setrlimit(resource, &value) != 0) failStart(report, StartStep::Limits);
@@ -256,6 +275,69 @@ std::vector<std::pair<int, rlimit>> planLimits(const SandboxLimits& limits) {
     if (limits.fileSizeBytes > 0) add(RLIMIT_FSIZE, limits.fileSizeBytes, limits.fileSizeBytes);
     add(RLIMIT_CORE, 0, 0);
     return planned;
+}
+
+// ---- The parent: file-system isolation ----
+
+// The first line of `text`, for a reason.
+std::string firstLine(const std::string& text) {
+    return text.substr(0, std::min(text.find('\n'), size_t(200)));
+}
+
+IsolationChoice probeIsolation(const std::optional<std::string>& drop_to_user) {
+    std::string landlock_why;
+    const int abi = landlockAbi(&landlock_why);
+    if (abi > 0) return {Isolation::Landlock, "Landlock ABI " + std::to_string(abi)};
+    std::string bwrap_why;
+    const std::string bwrap = findBubblewrap();
+    if (bwrap.empty()) {
+        bwrap_why = "no bwrap in /usr/local/bin, /usr/bin or /bin: Debian's bubblewrap package";
+    } else {
+        SandboxCommand probe;
+        probe.argv = bubblewrapArgv(bwrap, {{"/usr", "/bin", "/lib", "/lib64"}, {}}, "/", {"true"});
+        probe.dropToUser = drop_to_user;
+        probe.limits = {10, 10, 0, 0, 0, 4096, 4096};
+        const SandboxResult r = runSandboxed(probe);
+        if (r.succeeded()) return {Isolation::Bubblewrap, "bubblewrap (" + bwrap + ")"};
+        bwrap_why =
+            bwrap + " does not run here: " + (r.stderrText.empty() ? r.description : firstLine(r.stderrText));
+    }
+    return {Isolation::None, "no file-system isolation: Landlock unavailable (" + landlock_why +
+                                 "); bubblewrap unavailable (" + bwrap_why + ")"};
+}
+
+// How a command's `files` will hold: the isolation, and Landlock's ruleset or bwrap's command line.
+struct Confinement {
+    Isolation isolation = Isolation::None;
+    Fd ruleset;
+    std::vector<std::string> argv;  // what the child executes
+};
+
+Confinement confine(const SandboxCommand& command, std::vector<std::string>& warnings) {
+    Confinement c;
+    c.argv = command.argv;
+    if (!command.files) return c;
+    Isolation isolation = command.isolation;
+    std::string why = "no file-system isolation: the command asked for none";
+    if (isolation == Isolation::Auto) {
+        const IsolationChoice choice = isolationFor(command.dropToUser);
+        isolation = choice.isolation;
+        why = choice.description;
+    }
+    if (isolation == Isolation::Landlock) {
+        const int abi = landlockAbi(&why);
+        RASTER_REQUIRE(abi > 0, InvalidState, "Landlock isolation asked for: " + why);
+        c.ruleset = Fd(makeLandlockRuleset(*command.files, abi));
+    } else if (isolation == Isolation::Bubblewrap) {
+        const std::string bwrap = findBubblewrap();
+        RASTER_REQUIRE(!bwrap.empty(), InvalidState,
+                       "bubblewrap isolation asked for: no bwrap in /usr/local/bin, /usr/bin or /bin");
+        c.argv = bubblewrapArgv(bwrap, *command.files, command.workingDirectory, command.argv);
+    } else {
+        warnings.push_back(why);
+    }
+    c.isolation = isolation;
+    return c;
 }
 
 // ---- The parent: watching ----
@@ -523,6 +605,16 @@ std::string signalDescription(int signal) {
     return "signal " + std::to_string(signal);
 }
 
+IsolationChoice isolationFor(const std::optional<std::string>& dropToUser) {
+    static std::mutex mutex;
+    static std::map<std::string, IsolationChoice> known;  // by the user the child runs as ("": the caller)
+    const std::string user = dropToUser && geteuid() == 0 ? *dropToUser : "";
+    const std::lock_guard lock(mutex);
+    auto it = known.find(user);
+    if (it == known.end()) it = known.emplace(user, probeIsolation(dropToUser)).first;
+    return it->second;
+}
+
 size_t userTaskCount(uid_t uid) {
     size_t count = 0;
     std::error_code error;
@@ -566,13 +658,16 @@ SandboxResult runSandboxed(const SandboxCommand& command) {
                                                                  : std::filesystem::current_path().string();
     const std::vector<std::string> environment =
         command.environment.value_or(defaultSandboxEnvironment(home));
+    const Confinement confinement = confine(command, result.warnings);
+    result.isolation = confinement.isolation;
     ChildPlan plan;
-    for (const std::string& arg : command.argv) plan.argv.push_back(const_cast<char*>(arg.c_str()));
+    for (const std::string& arg : confinement.argv) plan.argv.push_back(const_cast<char*>(arg.c_str()));
     for (const std::string& variable : environment) plan.envp.push_back(const_cast<char*>(variable.c_str()));
     plan.argv.push_back(nullptr);
     plan.envp.push_back(nullptr);
     plan.directory = command.workingDirectory.empty() ? nullptr : command.workingDirectory.c_str();
     plan.limits = planLimits(command.limits);
+    plan.landlockRuleset = confinement.ruleset.get();
     std::tie(plan.drop, plan.uid, plan.gid) = std::tuple(run.drop, run.uid, run.gid);
 
     Pipe out = makePipe("standard output"), err = makePipe("standard error"),
@@ -595,7 +690,11 @@ SandboxResult runSandboxed(const SandboxCommand& command) {
 
     Stream so{out.read.release(), command.limits.stdoutBytes},
         se{err.read.release(), command.limits.stderrBytes}, sr{report.read.release(), sizeof(StartFailure)};
-    const Ending ending = watch(pid, {&so, &se, &sr}, command.limits.wallSeconds, start);
+    Ending ending = watch(pid, {&so, &se, &sr}, command.limits.wallSeconds, start);
+    // bwrap exits with 128 + N when its child was killed by signal N: read back as that signal.
+    const int status = WIFEXITED(ending.status) ? WEXITSTATUS(ending.status) : 0;
+    if (confinement.isolation == Isolation::Bubblewrap && status > 128 && status < 128 + NSIG)
+        ending.status = status - 128;
     result.pid = pid;
     result.wallSeconds = ending.wallSeconds;
     const auto seconds = [](const timeval& t) { return double(t.tv_sec) + 1e-6 * double(t.tv_usec); };

@@ -25,13 +25,16 @@
 //  - an environment of its own: PATH, HOME, TMPDIR and LANG=C only (defaultSandboxEnvironment),
 //    unless the command gives one;
 //  - death with its parent (PR_SET_PDEATHSIG SIGKILL), so that a grader killed mid-run leaves no
-//    submission running.
+//    submission running;
+//  - with `files` set, only those files (isolation.hpp): Landlock where the kernel has it, else
+//    bubblewrap where it runs, else nothing beyond the user's permissions (result.isolation and
+//    result.warnings say which held).
 //
 // What it cannot do: a process that leaves the child's process group (setsid, setpgid) escapes the
 // group's kill, as it would with `timeout`; the sandbox stops reading its output 0.25 s after the
-// child ends, so it cannot hold runSandboxed up, but it may live on. There is no file-system or
-// network isolation beyond the user's permissions: that needs namespaces or a container (Gradescope
-// runs each submission in a container of its own).
+// child ends, so it cannot hold runSandboxed up, but it may live on. Without `files`, or where neither
+// Landlock nor bubblewrap is available, there is no file-system isolation beyond the user's
+// permissions.
 #pragma once
 
 #include <sys/types.h>
@@ -41,6 +44,8 @@
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "grade/isolation.hpp"
 
 namespace raster::grade {
 
@@ -93,6 +98,11 @@ struct SandboxCommand {
     // is not root cannot change user and ignores it.
     std::optional<std::string> dropToUser = "nobody";
     SandboxLimits limits;
+    // The files the child may open (isolation.hpp); nullopt: whatever its user may.
+    std::optional<FileAccess> files;
+    // How `files` is enforced: Auto, the best this machine has (isolationFor); Landlock or Bubblewrap,
+    // that one or an Error(InvalidState) saying why not; None, not at all (a warning says so).
+    Isolation isolation = Isolation::Auto;
 };
 
 // What ended the child, most specific first: a limit the sandbox can tell, else how it ended.
@@ -145,8 +155,11 @@ struct SandboxResult {
 
     pid_t pid = 0;  // the child's process id, also its process group's id (all ended by now)
     uid_t uid = 0;  // the user id it ran as
-    // Limits that could not apply, e.g. "RLIMIT_NPROC is not enforced for root: the child ran as root".
+    // Limits that could not apply, e.g. "RLIMIT_NPROC is not enforced for root: the child ran as root",
+    // or "no file-system isolation: Landlock unavailable (...); bubblewrap unavailable (...)".
     std::vector<std::string> warnings;
+    // How `files` held: Landlock, Bubblewrap, or None (also when no `files` were given).
+    Isolation isolation = Isolation::None;
 
     bool succeeded() const { return outcome == SandboxOutcome::Exited && exitStatus == 0; }
 };
@@ -168,5 +181,13 @@ std::string signalDescription(int signal);
 
 // The processes and threads whose real user id is `uid` (from /proc): what RLIMIT_NPROC counts.
 size_t userTaskCount(uid_t uid);
+
+// What Isolation::Auto chooses for a child that runs as `dropToUser` (as runSandboxed resolves it) and
+// why (isolation.hpp): Landlock where the kernel has it; else bubblewrap where a bwrap on the PATH
+// runs as that user (tried once: `bwrap ... true`); else None, the description naming why neither:
+// "Landlock ABI 7", "bubblewrap (/usr/bin/bwrap)", "no file-system isolation: Landlock unavailable
+// (landlock_create_ruleset: Function not implemented: ...); bubblewrap unavailable (no bwrap on the
+// PATH)". Probed once for each user and kept.
+IsolationChoice isolationFor(const std::optional<std::string>& dropToUser);
 
 }  // namespace raster::grade
