@@ -1,12 +1,13 @@
 // raster render [scene...] [--out-dir D] [--width W] [--height H] [--time T] [--frames N [--fps F]]
-//               [--reference] [--view] [--list]:
+//               [--threads T] [--reference] [--view] [--list]:
 // renders the lecture's scenes and the labs' (all of them by default) to D/<scene>.png, animated
 // ones at their start time (--time T, or the scene's own). --frames N writes a sequence instead,
 // D/<scene>_0000.png … D/<scene>_<N−1>.png, frame k at time T + k/F (F = --fps, 30 by default; the
 // scene's fixed steps in that time, scenes.hpp): only for animated scenes (all of them when none is
 // named); naming a static scene with --frames is refused, as its frames would all be the same.
 // With --view it then opens the viewer on the first scene where a display exists (DISPLAY or
-// WAYLAND_DISPLAY set). --list prints the scenes, one a line, and what each is.
+// WAYLAND_DISPLAY set). --list prints the scenes, one a line, and what each is. --threads T: the
+// worker threads (any T gives the same bits; tests/scenes_test.cpp).
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -31,6 +32,7 @@ struct RenderArgs {
     SceneOptions options;
     uint32_t frames = 0;  // 0: one picture, <scene>.png
     double fps = 30.0;
+    uint32_t threads = 0;  // 0: one per hardware thread
     bool reference = false, plain = false, viewAfter = false, list = false;
 };
 
@@ -144,7 +146,7 @@ int runRender(const RenderArgs& args) {
     std::error_code ec;
     std::filesystem::create_directories(args.outDir, ec);
     RASTER_REQUIRE(!ec, BadFile, "cannot create output directory '" + args.outDir + "': " + ec.message());
-    Context context({0, args.reference, args.plain});
+    Context context({args.threads, args.reference, args.plain});
     for (const std::string& name : names) renderScene(context, name, args);
     return args.viewAfter && !names.empty() ? viewAfter(names.front()) : 0;
 }
@@ -166,6 +168,7 @@ Command addRender(CLI::App& app) {
         *command, "--fps", 0.0, 1000.0, true, [args](double fps) { args->fps = fps; },
         "--frames: frames per second of simulated time (frame k at --time + k/F)")
         ->default_str("30");
+    addThreadsOption(*command, args->threads);
     command->add_flag("--reference", args->reference, "render through the reference pipeline");
     command->add_flag("--plain", args->plain, "every primitive through the plain path (fill/quads.hpp): for stepping in a debugger");
     command->add_flag("--view", args->viewAfter,
