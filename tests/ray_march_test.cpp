@@ -327,7 +327,7 @@ TEST(EmptySpaceSkipping, ChangesNoBit) {
                 for (uint32_t i = 0; i < n; ++i)
                     if (!step(every, i)) break;
                 uint32_t visited = 0;
-                forEachOccupiedSample(grid, eye, d, t0, ds, n, [&](uint32_t i) {
+                forEachOccupiedSample(grid, eye, d, t0, ds, n, [&](uint32_t i, const glm::ivec3&) {
                     ++visited;
                     return step(skipping, i);
                 });

@@ -42,6 +42,11 @@ std::vector<std::string_view> fogFigureNames();
 std::unique_ptr<Scene> makeFogFigureScene(std::string_view name, const SceneOptions& options);
 constexpr SceneCamera kMediaCamera{{-2.0f, 2.4f, 5.6f}, {0.0f, 0.9f, 0.2f}};
 std::unique_ptr<Scene> makeMediaClosedFormScene(const SceneOptions& options);
+// SCENES.md's `media`: ray marching through metaballs (scene_media_march.cpp), from its camera, with
+// a grid of kMediaGridCells³ for empty-space skipping.
+constexpr SceneCamera kMediaMarchCamera{{0, 0.4f, 3}, {0, 0.2f, 0}};
+constexpr int kMediaGridCells = 16;
+std::unique_ptr<Scene> makeMediaMarchScene(const SceneOptions& options);
 std::unique_ptr<Scene> makeFireScene(const SceneOptions& options);
 std::unique_ptr<Scene> makeSmokeScene(const SceneOptions& options);  // scene_smoke.cpp
 std::unique_ptr<Scene> makeSpritesScene(const SceneOptions& options);

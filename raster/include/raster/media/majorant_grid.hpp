@@ -25,24 +25,34 @@
 
 namespace raster::media {
 
-struct GridFrame {
+class GridFrame {
+public:
     Box box;
     glm::ivec3 dims{1};
 
-    glm::vec3 cellSize() const { return (box.hi - box.lo) / glm::vec3(dims); }
+    GridFrame() = default;
+    GridFrame(const Box& b, const glm::ivec3& n) : box(b), dims(n), size_((b.hi - b.lo) / glm::vec3(n)) {}
+
+    glm::vec3 cellSize() const { return size_; }
     // The cell index along axis a of coordinate x (header: half-open, the last closed).
     int cellOf(int a, float x) const {
-        const float f = std::floor((x - box.lo[a]) / cellSize()[a]);
-        return std::clamp(int(std::fmax(std::fmin(f, 1e9f), -1e9f)), 0, dims[a] - 1);
+        const float f = std::floor((x - box.lo[a]) / size_[a]);
+        const float bounded = f < -1e9f ? -1e9f : f < 1e9f ? f : 1e9f;  // NaN → 1e9: no UB in the cast
+        return std::clamp(int(bounded), 0, dims[a] - 1);
     }
+    // The cell holding p (a point outside the box: the nearest cell).
+    glm::ivec3 cellAt(const glm::vec3& p) const { return {cellOf(0, p.x), cellOf(1, p.y), cellOf(2, p.z)}; }
     // The coordinate of boundary i along axis a (0: lo, dims: hi).
-    float boundary(int a, int i) const { return i == dims[a] ? box.hi[a] : box.lo[a] + float(i) * cellSize()[a]; }
+    float boundary(int a, int i) const { return i == dims[a] ? box.hi[a] : box.lo[a] + float(i) * size_[a]; }
     size_t index(const glm::ivec3& c) const { return (size_t(c.z) * dims.y + c.y) * dims.x + c.x; }
     size_t cellCount() const { return size_t(dims.x) * dims.y * dims.z; }
     Box cellBox(const glm::ivec3& c) const {
         return {{boundary(0, c.x), boundary(1, c.y), boundary(2, c.z)},
                 {boundary(0, c.x + 1), boundary(1, c.y + 1), boundary(2, c.z + 1)}};
     }
+
+private:
+    glm::vec3 size_{0.0f};  // (hi − lo)/dims, metres
 };
 
 // Calls visit(cell, t_enter, t_exit) for each cell the ray o + t·d crosses within [t0, t1], in order;
@@ -51,8 +61,8 @@ template <class Visit>
 void walkGrid(const GridFrame& grid, const glm::vec3& o, const glm::vec3& d, float t0, float t1, Visit&& visit) {
     if (d.x == 0.0f && d.y == 0.0f && d.z == 0.0f) return;
     auto [t_in, t_out] = slabInterval(grid.box, o, d);
-    float t = std::fmax(t_in, t0);
-    const float t_end = std::fmin(t_out, t1);
+    float t = std::max(t_in, t0);
+    const float t_end = std::min(t_out, t1);
     if (!(t < t_end)) return;
     // The first cell: the one holding the entry point, except that a ray entering on a cell's lower
     // boundary while moving down is already in the cell below (cells are half-open).
@@ -72,11 +82,11 @@ void walkGrid(const GridFrame& grid, const glm::vec3& o, const glm::vec3& d, flo
     };
     for (int a = 0; a < 3; ++a) t_next[a] = nextCrossing(a);
     for (;;) {
-        const float t_cross = std::fmin(std::fmin(t_next.x, t_next.y), t_next.z);
-        const float t_leave = std::fmin(t_cross, t_end);
+        const float t_cross = std::min(std::min(t_next.x, t_next.y), t_next.z);
+        const float t_leave = std::min(t_cross, t_end);
         if (t_leave > t && !visit(cell, t, t_leave)) return;
         if (t_cross >= t_end) return;
-        t = std::fmax(t, t_cross);
+        t = std::max(t, t_cross);
         for (int a = 0; a < 3; ++a) {
             if (t_next[a] != t_cross) continue;
             cell[a] += step[a];
@@ -113,7 +123,7 @@ MajorantGrid makeMajorantGrid(const Box& box, glm::ivec3 dims, CellBound&& cellB
 }
 
 // Empty-space skipping for a march of n samples at t_i = t0 + (i + ½)·ds (float, as the pixel shader
-// computes them): calls visit(i) for each sample whose cell (the one the walk is in at t_i) has a
+// computes them): calls visit(i, cell) for each sample whose cell (the one the walk is in at t_i) has a
 // majorant above 0, in increasing i, and skips the rest without touching them. Exact where the
 // majorant bounds the field (every skipped sample's extinction is 0, so it would add nothing and leave
 // the transmittance unchanged: the same bits). visit returns false to stop (early termination).
@@ -136,13 +146,16 @@ void forEachOccupiedSample(const MajorantGrid& grid, const glm::vec3& o, const g
     walkGrid(grid.frame, o, d, t0, t0 + float(n) * ds, [&](const glm::ivec3& cell, float, float t_exit) {
         const uint32_t end = firstAtOrPast(t_exit);
         if (grid.at(cell) > 0.0f)
-            for (; next < end && going; ++next) going = visit(next);
+            for (; next < end && going; ++next) going = visit(next, cell);
         next = std::max(next, end);
         return going && next < n;
     });
-    // Samples past the walk's last exit (rounding at the far end) lie in the last cell or outside
-    // the box: visit them, as the march without skipping would.
-    for (; next < n && going; ++next) going = visit(next);
+    // Samples past the walk's last exit (rounding at the far end) lie in the last cell or at most a
+    // rounding error outside the box: visit them with the cell that holds their position, as the
+    // march without skipping would.
+    for (; next < n && going; ++next) {
+        going = visit(next, grid.frame.cellAt(o + d * sampleAt(next)));
+    }
 }
 
 }  // namespace raster::media

@@ -7,6 +7,7 @@
 // scene's extinction is μ(x) = 4·ρ(x) per metre.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <glm/glm.hpp>
@@ -37,8 +38,8 @@ inline std::pair<float, float> slabInterval(const Box& box, const glm::vec3& o, 
         const float inv = 1.0f / d[a];
         float t_lo = (box.lo[a] - o[a]) * inv, t_hi = (box.hi[a] - o[a]) * inv;
         if (t_lo > t_hi) std::swap(t_lo, t_hi);
-        t_near = std::fmax(t_near, t_lo);
-        t_far = std::fmin(t_far, t_hi);
+        t_near = std::max(t_near, t_lo);
+        t_far = std::min(t_far, t_hi);
     }
     return {t_near, t_far};
 }

@@ -1,0 +1,261 @@
+// The `media` scene's march (../shared/bench/SCENES.md, "Scene media"; NOTES.md part 1,
+// "Sugármenetelés"): single scattering of a directional light in a metaball medium, with shadow rays,
+// an isotropic ambient term and the exponential step, front to back from the eye.
+//
+// Per view ray o + t·d (d unit length, t in metres): the box's entry and exit t0 = max(t_near, 0),
+// t1 = t_far; N steps of Δs = (t1 − t0)/N sampled at their midpoints x_i. At a sample with μ_i > 0:
+//   shadow ray   τ_l = Σ_j μ(x_i + l·(j + ½)·Δl)·Δl, M steps of Δl = t_l/M to the box's exit along l
+//   source       S_i = albedo·(p(cos θ)·e^{−τ_l}·E + A)        (radiance; p per steradian, cos θ = d·l)
+//   step         L += T·S_i·(1 − e^{−μ_iΔs}),  T *= e^{−μ_iΔs} (exact for μ, S constant over the step),
+//                one expm1 giving both (simd.hpp's exp and expm1: 1 and 2 ulp, the C library's in the
+//                reference pipeline)
+// and the pixel is L + T·L_bg. Samples with μ_i = 0 add nothing and leave T alone.
+//
+// Skipping what is empty (MarchSettings::skip), each exact: every term left out is exactly +0, so the
+// result is the same bits as the march that evaluates every sample and every ball
+// (tests/ray_march_test.cpp checks whole images):
+//   none   every sample of the box, every ball: the definition.
+//   balls  per view ray, the six balls' intervals along it (radius widened by 1e-3): only the samples
+//          from the first interval's start to the last one's end are evaluated. Six ray–sphere tests
+//          per ray; the scene's default.
+//   grid   a grid over the box keeps, per cell, the balls that reach it (radius widened by 1e-5,
+//          metaballs.hpp); the march walks the grid (3D DDA, majorant_grid.hpp), evaluates only the
+//          samples in cells some ball reaches, and sums only that cell's balls. The general mechanism:
+//          it needs only a bound per cell, as a voxel grid has.
+// Densities are evaluated eight samples at a time (Float8, the same operations per lane as the
+// scalar metaballTerm: the same bits), along the view ray and along every shadow ray.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <utility>
+#include <vector>
+
+#include "raster/media/majorant_grid.hpp"
+#include "raster/media/metaballs.hpp"
+#include "raster/media/phase_functions.hpp"
+#include "raster/simd.hpp"
+
+namespace raster::media {
+
+// The medium: six metaballs in a box, extinction μ = scale·ρ per metre.
+struct MetaballVolume {
+    std::array<Metaball, 6> balls{};
+    Box box;
+    float extinctionScale = 4.0f;  // μ = scale·ρ, 1/m
+    MajorantGrid majorant;         // per cell: an upper bound of μ there (0: no ball reaches it)
+    std::vector<uint8_t> ballMask;  // per cell: bit k set where ball k reaches the cell
+    // The balls side by side for the eight-wide sums and the per-ray intervals: centres, radius², and
+    // radius² widened by 1e-3 of the radius.
+    std::array<float, 6> centreX{}, centreY{}, centreZ{}, radius2{}, widenedRadius2{};
+
+    // μ at x, summing the balls of `mask` in ball order (all six: 0x3f): metaballDensity's terms.
+    float extinction(const glm::vec3& x, uint32_t mask) const {
+        float rho = 0.0f;
+        for (uint32_t k = 0; k < balls.size(); ++k)
+            if (mask >> k & 1u) rho += metaballTerm(balls[k], x);
+        return extinctionScale * rho;
+    }
+    // μ at eight points, every ball: per lane the operations of extinction(x, 0x3f), bit for bit.
+    Float8 extinction8(Float8 px, Float8 py, Float8 pz) const {
+        Float8 rho(0.0f);
+        for (uint32_t k = 0; k < balls.size(); ++k) {
+            const Float8 vx = px - Float8(centreX[k]), vy = py - Float8(centreY[k]), vz = pz - Float8(centreZ[k]);
+            const Float8 u = (vx * vx + vy * vy + vz * vz) / Float8(radius2[k]);
+            const Float8 w = Float8(1.0f) - u;
+            rho = rho + select(u < Float8(1.0f), w * w, Float8(0.0f));
+        }
+        return Float8(extinctionScale) * rho;
+    }
+    uint32_t maskAt(const glm::vec3& x) const { return ballMask[majorant.frame.index(majorant.frame.cellAt(x))]; }
+};
+
+// The volume over `box` with a grid of `cells` per axis (1 to 1024) for SkipMethod::grid.
+inline MetaballVolume makeMetaballVolume(const std::array<Metaball, 6>& balls, const Box& box, float extinction_scale,
+                                         int cells) {
+    MetaballVolume v;
+    v.balls = balls, v.box = box, v.extinctionScale = extinction_scale;
+    v.majorant = makeMajorantGrid(box, glm::ivec3(cells),
+                                  [&](const Box& b) { return extinction_scale * metaballMajorant(balls, b); });
+    for (size_t k = 0; k < balls.size(); ++k) {
+        v.centreX[k] = balls[k].centre.x, v.centreY[k] = balls[k].centre.y, v.centreZ[k] = balls[k].centre.z;
+        v.radius2[k] = balls[k].radius * balls[k].radius;
+        const float widened = balls[k].radius * (1.0f + 1e-3f);
+        v.widenedRadius2[k] = widened * widened;
+    }
+    v.ballMask.resize(v.majorant.frame.cellCount());
+    for (int z = 0; z < cells; ++z)
+        for (int y = 0; y < cells; ++y)
+            for (int x = 0; x < cells; ++x) {
+                const glm::ivec3 c{x, y, z};
+                uint8_t mask = 0;
+                for (uint32_t k = 0; k < balls.size(); ++k)
+                    if (metaballMajorant(std::array<Metaball, 1>{balls[k]}, v.majorant.frame.cellBox(c)) > 0.0f)
+                        mask |= uint8_t(1u << k);
+                v.ballMask[v.majorant.frame.index(c)] = mask;
+            }
+    return v;
+}
+
+// The light: directional, plus isotropic ambient in-scattering.
+struct VolumeLight {
+    glm::vec3 toLight{0.0f, 1.0f, 0.0f};  // unit vector towards the light
+    glm::vec3 sun{1.0f};                  // irradiance E of the directional light
+    glm::vec3 ambient{0.0f};              // A: in-scattered radiance from all directions
+    float g = 0.0f;                       // Henyey–Greenstein asymmetry (phase_functions.hpp)
+    float albedo = 1.0f;                  // single-scattering albedo μs/μ
+};
+
+enum class SkipMethod : uint8_t { none, balls, grid };
+
+inline const char* skipMethodName(SkipMethod m) {
+    switch (m) {
+        case SkipMethod::none: return "none";
+        case SkipMethod::balls: return "balls";
+        case SkipMethod::grid: return "grid";
+    }
+    return "?";
+}
+
+struct MarchSettings {
+    uint32_t steps = 32;                  // N along the view ray (≥ 1)
+    uint32_t shadowSteps = 6;             // M along each shadow ray (≥ 1)
+    SkipMethod skip = SkipMethod::balls;  // header: every method gives the same bits
+};
+
+// What one evaluated sample did, for the trace and the viewer's march plot.
+struct MarchSample {
+    uint32_t index = 0;
+    float s = 0.0f;                    // metres from the eye
+    float extinction = 0.0f;           // μ_i, 1/m
+    float opticalStep = 0.0f;          // μ_i·Δs
+    float transmittance = 1.0f;        // T from the eye to the sample's step, before it
+    float shadowTransmittance = 1.0f;  // e^{−τ_l} (1 where μ_i = 0: no shadow ray)
+    glm::vec3 added{0.0f};             // the radiance the step added to L
+};
+
+struct MarchResult {
+    glm::vec3 radiance{0.0f};  // L, without the background
+    float transmittance = 1.0f;
+    uint32_t densityEvaluations = 0;  // μ(x) evaluated, view and shadow rays
+};
+
+struct NoMarchObserver {
+    void operator()(const MarchSample&) const {}
+};
+
+namespace detail {
+
+// The samples t_i = t0 + (i + ½)·dt, i < n, of the ray o + t·d that may lie inside some ball: [first,
+// last] (first > last: none). Conservative: each ball widened by 1e-3 of its radius (its disc
+// b² − a·c then exceeds float's rounding of it by two orders of magnitude wherever the ball itself is
+// touched), its interval widened by one sample on each side.
+inline std::pair<int32_t, int32_t> ballSpan(const MetaballVolume& v, const glm::vec3& o, const glm::vec3& d, float t0,
+                                            float dt, uint32_t n) {
+    int32_t first = int32_t(n), last = -1;
+    const float a = d.x * d.x + d.y * d.y + d.z * d.z;
+    if (!(a > 0.0f)) return {first, last};
+    const float to_u = 1.0f / (a * dt), u0 = t0 / dt;  // u = (t − t0)/dt
+    for (size_t k = 0; k < v.balls.size(); ++k) {
+        const float ox = o.x - v.centreX[k], oy = o.y - v.centreY[k], oz = o.z - v.centreZ[k];
+        const float b = ox * d.x + oy * d.y + oz * d.z, c = ox * ox + oy * oy + oz * oz - v.widenedRadius2[k];
+        const float disc = b * b - a * c;
+        if (!(disc >= 0.0f)) continue;
+        const float root = std::sqrt(disc);
+        const float lo = std::ceil((-b - root) * to_u - u0 - 1.5f), hi = std::floor((-b + root) * to_u - u0 + 0.5f);
+        if (hi < 0.0f || lo > float(n) - 1.0f) continue;
+        first = std::min(first, int32_t(std::max(lo, 0.0f)));
+        last = std::max(last, int32_t(std::min(hi, float(n) - 1.0f)));
+    }
+    return {first, last};
+}
+
+// The eight sample positions o + d·(t0 + (i + ½)·dt), i = i0 .. i0 + 7: per lane the scalar's operations.
+inline std::array<Float8, 3> samplePositions8(const glm::vec3& o, const glm::vec3& d, float t0, float dt, uint32_t i0) {
+    const Float8 half_index(simd::F32x8{0.5f, 1.5f, 2.5f, 3.5f, 4.5f, 5.5f, 6.5f, 7.5f});
+    const Float8 s = Float8(t0) + (half_index + Float8(float(i0))) * Float8(dt);
+    return {Float8(o.x) + Float8(d.x) * s, Float8(o.y) + Float8(d.y) * s, Float8(o.z) + Float8(d.z) * s};
+}
+
+// slabInterval(box, x, d).second for x inside the box, given inv = 1/d per axis (computed once per
+// light: the same reciprocals slabInterval computes per call, so the same bits).
+inline float exitDistance(const Box& box, const glm::vec3& x, const glm::vec3& d, const glm::vec3& inv) {
+    float t_far = INFINITY;
+    for (int a = 0; a < 3; ++a) {
+        if (d[a] == 0.0f) continue;
+        const float t_lo = (box.lo[a] - x[a]) * inv[a], t_hi = (box.hi[a] - x[a]) * inv[a];
+        t_far = std::min(t_far, std::max(t_lo, t_hi));
+    }
+    return t_far;
+}
+
+// τ_l along the shadow ray from x to the box's exit towards the light: Σ_j μ(p_j)·Δl in j's order, as
+// the definition sums it, eight samples' densities at a time with every ball (a ball that does not
+// reach a sample adds +0, so nothing is skipped: finding what to skip would cost as much).
+inline float shadowDepth(const MetaballVolume& v, const VolumeLight& light, const glm::vec3& inv_light,
+                         const MarchSettings& settings, const glm::vec3& x, MarchResult& result) {
+    const float dl = exitDistance(v.box, x, light.toLight, inv_light) / float(settings.shadowSteps);
+    float tau = 0.0f;
+    for (uint32_t j0 = 0; j0 < settings.shadowSteps; j0 += 8) {
+        const auto [px, py, pz] = samplePositions8(x, light.toLight, 0.0f, dl, j0);
+        const Float8 mu = v.extinction8(px, py, pz);
+        const uint32_t lanes = std::min(8u, settings.shadowSteps - j0);
+        result.densityEvaluations += lanes;
+        for (uint32_t j = 0; j < lanes; ++j) tau += mu[int(j)] * dl;
+    }
+    return tau;
+}
+
+}  // namespace detail
+
+// The radiance and transmittance of one view ray (header: the rule and its skipping).
+template <class Observer = NoMarchObserver>
+MarchResult marchMetaballs(const MetaballVolume& v, const VolumeLight& light, const MarchSettings& settings,
+                           const glm::vec3& eye, const glm::vec3& d, Observer&& observe = {}) {
+    MarchResult result;
+    const auto [t_near, t_far] = slabInterval(v.box, eye, d);
+    const float t0 = std::max(t_near, 0.0f), t1 = t_far;
+    if (!(t1 > t0)) return result;
+    float phase = -1.0f;  // computed at the first sample that scatters (most rays have none)
+    const glm::vec3 inv_light = 1.0f / light.toLight;
+    const float ds = (t1 - t0) / float(settings.steps);
+    auto step = [&](uint32_t i, float mu) {
+        const float s = t0 + (float(i) + 0.5f) * ds;
+        MarchSample sample{i, s, mu, mu * ds, result.transmittance, 1.0f, glm::vec3(0.0f)};
+        if (mu > 0.0f) {
+            if (phase < 0.0f) phase = henyeyGreenstein(light.g, glm::dot(d, light.toLight));
+            const glm::vec3 x = eye + d * s;
+            sample.shadowTransmittance = raster::exp(-detail::shadowDepth(v, light, inv_light, settings, x, result));
+            const glm::vec3 source = light.albedo * (phase * sample.shadowTransmittance * light.sun + light.ambient);
+            const float e = raster::expm1(-sample.opticalStep);  // e^{−μΔs} − 1: −e absorbed, 1 + e passed
+            sample.added = result.transmittance * source * -e;
+            result.radiance += sample.added;
+            result.transmittance *= 1.0f + e;
+        }
+        observe(sample);
+    };
+    if (settings.skip == SkipMethod::grid) {
+        forEachOccupiedSample(v.majorant, eye, d, t0, ds, settings.steps, [&](uint32_t i, const glm::ivec3& cell) {
+            ++result.densityEvaluations;
+            step(i, v.extinction(eye + d * (t0 + (float(i) + 0.5f) * ds), v.ballMask[v.majorant.frame.index(cell)]));
+            return true;
+        });
+        return result;
+    }
+    const auto [first, last] = settings.skip == SkipMethod::balls
+                                   ? detail::ballSpan(v, eye, d, t0, ds, settings.steps)
+                                   : std::pair<int32_t, int32_t>{0, int32_t(settings.steps) - 1};
+    for (int32_t i0 = first; i0 <= last; i0 += 8) {
+        const auto [px, py, pz] = detail::samplePositions8(eye, d, t0, ds, uint32_t(i0));
+        const Float8 mu = v.extinction8(px, py, pz);
+        const int32_t lanes = std::min(8, last - i0 + 1);
+        result.densityEvaluations += uint32_t(lanes);
+        for (int32_t l = 0; l < lanes; ++l) step(uint32_t(i0 + l), mu[l]);
+    }
+    return result;
+}
+
+}  // namespace raster::media
