@@ -163,6 +163,41 @@ TEST(EmptySpaceSkipping, EverySkipMethodGivesTheDefinitionsBits) {
     EXPECT_LT(evaluations[2] * 2, evaluations[0]) << "the grid skips little";
 }
 
+// The shadow ray sums only the balls its line passes near (shadowBallMask): for random points in the
+// box and random, axis-aligned and grazing light directions, the same bits as summing every ball at
+// every shadow sample, written out here from the definition.
+TEST(ShadowRay, SkippingFarBallsChangesNoBit) {
+    const MetaballVolume v = sceneVolume();
+    std::mt19937 rng(17);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    size_t differing = 0, skipped_some = 0, rays = 0;
+    for (int r = 0; r < 200000; ++r) {
+        const glm::vec3 x{u(rng) * 1.2f, 0.2f + u(rng), u(rng) * 1.2f};
+        glm::vec3 l{u(rng), u(rng), u(rng)};
+        if (r % 5 == 0) l = glm::vec3(0.0f), l[r % 3] = r % 10 < 5 ? 1.0f : -1.0f;
+        if (r % 7 == 0) {  // towards a ball's rim: the line grazes it
+            const Metaball& b = v.balls[size_t(r) % 6];
+            l = b.centre + glm::normalize(glm::vec3(u(rng), u(rng), u(rng))) * b.radius - x;
+        }
+        if (glm::length(l) < 1e-3f) continue;
+        VolumeLight light;
+        light.toLight = glm::normalize(l);
+        MarchSettings settings;
+        settings.shadowSteps = r % 2 ? 6 : 11;
+        MarchResult counts;
+        const float tau = media::detail::shadowDepth(v, light, 1.0f / light.toLight, settings, x, counts);
+        const float dl = slabInterval(v.box, x, light.toLight).second / float(settings.shadowSteps);
+        float expected = 0.0f;
+        for (uint32_t j = 0; j < settings.shadowSteps; ++j)
+            expected += v.extinction(x + light.toLight * ((float(j) + 0.5f) * dl), 0x3f) * dl;
+        differing += std::memcmp(&tau, &expected, sizeof tau) != 0;
+        skipped_some += media::detail::shadowBallMask(v, x, light.toLight) != 0x3fu;
+        ++rays;
+    }
+    EXPECT_EQ(differing, 0u);
+    EXPECT_GT(skipped_some, rays / 2) << "the mask should leave balls out";
+}
+
 // The scene agrees with SCENES.md's definition computed in double: every pixel of a 320×180 and a
 // 997×613 rendering within 1/255 (the fast exp's ulps and float rounding stay far below it).
 TEST(MediaScene, AgreesWithTheDefinitionInDouble) {
