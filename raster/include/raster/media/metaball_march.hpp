@@ -230,6 +230,19 @@ inline float shadowDepth(const MetaballVolume& v, const VolumeLight& light, cons
     return tau;
 }
 
+// raster::exp and raster::expm1 of eight values: the SIMD layer's, the same bits as its scalar ones;
+// in the reference pipeline (shader_context.hpp) the C library's, lane by lane, as the scalar ones.
+inline Float8 exp8(Float8 x) {
+    if (!inReferenceMode()) return raster::exp(x);
+    for (int l = 0; l < 8; ++l) x.set(l, raster::exp(x[l]));
+    return x;
+}
+inline Float8 expm18(Float8 x) {
+    if (!inReferenceMode()) return raster::expm1(x);
+    for (int l = 0; l < 8; ++l) x.set(l, raster::expm1(x[l]));
+    return x;
+}
+
 }  // namespace detail
 
 // The radiance and transmittance of one view ray (header: the rule and its skipping).
@@ -243,25 +256,31 @@ MarchResult marchMetaballs(const MetaballVolume& v, const VolumeLight& light, co
     float phase = -1.0f;  // computed at the first sample that scatters (most rays have none)
     const glm::vec3 inv_light = 1.0f / light.toLight;
     const float ds = (t1 - t0) / float(settings.steps);
-    auto step = [&](uint32_t i, float mu) {
+    // One sample's step, given μ, the shadow ray's transmittance e^{−τ_l} and e = e^{−μΔs} − 1 (−e is
+    // absorbed, 1 + e passes): the exponentials come in eight at a time.
+    auto step = [&](uint32_t i, float mu, float shadow_t, float e) {
         const float s = t0 + (float(i) + 0.5f) * ds;
         MarchSample sample{i, s, mu, mu * ds, result.transmittance, 1.0f, glm::vec3(0.0f)};
         if (mu > 0.0f) {
             if (phase < 0.0f) phase = henyeyGreenstein(light.g, glm::dot(d, light.toLight));
-            const glm::vec3 x = eye + d * s;
-            sample.shadowTransmittance = raster::exp(-detail::shadowDepth(v, light, inv_light, settings, x, result));
-            const glm::vec3 source = light.albedo * (phase * sample.shadowTransmittance * light.sun + light.ambient);
-            const float e = raster::expm1(-sample.opticalStep);  // e^{−μΔs} − 1: −e absorbed, 1 + e passed
+            sample.shadowTransmittance = shadow_t;
+            const glm::vec3 source = light.albedo * (phase * shadow_t * light.sun + light.ambient);
             sample.added = result.transmittance * source * -e;
             result.radiance += sample.added;
             result.transmittance *= 1.0f + e;
         }
         observe(sample);
     };
+    auto shadowDepthAt = [&](uint32_t i) {
+        return detail::shadowDepth(v, light, inv_light, settings, eye + d * (t0 + (float(i) + 0.5f) * ds), result);
+    };
     if (settings.skip == SkipMethod::grid) {
         forEachOccupiedSample(v.majorant, eye, d, t0, ds, settings.steps, [&](uint32_t i, const glm::ivec3& cell) {
             ++result.densityEvaluations;
-            step(i, v.extinction(eye + d * (t0 + (float(i) + 0.5f) * ds), v.ballMask[v.majorant.frame.index(cell)]));
+            const float mu =
+                v.extinction(eye + d * (t0 + (float(i) + 0.5f) * ds), v.ballMask[v.majorant.frame.index(cell)]);
+            const float tau = mu > 0.0f ? shadowDepthAt(i) : 0.0f;
+            step(i, mu, raster::exp(-tau), raster::expm1(-(mu * ds)));
             return true;
         });
         return result;
@@ -274,7 +293,11 @@ MarchResult marchMetaballs(const MetaballVolume& v, const VolumeLight& light, co
         const Float8 mu = v.extinction8(px, py, pz);
         const int32_t lanes = std::min(8, last - i0 + 1);
         result.densityEvaluations += uint32_t(lanes);
-        for (int32_t l = 0; l < lanes; ++l) step(uint32_t(i0 + l), mu[l]);
+        Float8 tau(0.0f);
+        for (int32_t l = 0; l < lanes; ++l)
+            if (mu[l] > 0.0f) tau.set(l, shadowDepthAt(uint32_t(i0 + l)));
+        const Float8 shadow_t = detail::exp8(-tau), e = detail::expm18(-(mu * Float8(ds)));
+        for (int32_t l = 0; l < lanes; ++l) step(uint32_t(i0 + l), mu[l], shadow_t[l], e[l]);
     }
     return result;
 }
