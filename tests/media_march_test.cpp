@@ -198,6 +198,44 @@ TEST(ShadowRay, SkippingFarBallsChangesNoBit) {
     EXPECT_GT(skipped_some, rays / 2) << "the mask should leave balls out";
 }
 
+// The pixel shader's eight- and sixteen-wide calls give, lane by lane, the scalar call's bits (the
+// pipeline shades whole blocks wide and may shade a pixel alone).
+TEST(MediaShader, WideCallsAreTheScalarCallLaneByLane) {
+    const MetaballVolume v = sceneVolume();
+    shaders::PsMediaMarch ps;
+    ps.invViewProj = sceneInverseViewProj(1280, 720);
+    ps.eye = kEye;
+    ps.volume = &v;
+    ps.light = sceneLight();
+    ps.background = {0.08f, 0.10f, 0.16f};
+    std::mt19937 rng(23);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    for (int round = 0; round < 3000; ++round) {
+        float x[16], y[16];
+        for (int l = 0; l < 16; ++l) x[l] = u(rng), y[l] = u(rng);
+        if (round % 3 == 0) x[round % 16] = 0.0f, y[(round + 5) % 16] = 0.0f;
+        shaders::MediaRayVertexT<Float8x2> in;
+        in.position = glm::vec<4, Float8x2>(Float8x2(0.0f));
+        in.ndc = {Float8x2::load(x), Float8x2::load(y)};
+        const glm::vec<4, Float8x2> wide = ps(in);
+        shaders::MediaRayVertexT<Float8> in8;
+        in8.position = glm::vec<4, Float8>(Float8(0.0f));
+        in8.ndc = {Float8::load(x), Float8::load(y)};
+        const glm::vec<4, Float8> wide8 = ps(in8);
+        for (int l = 0; l < 16; ++l) {
+            const glm::vec4 scalar = ps(shaders::MediaRayVertex{glm::vec4(0.0f), {x[l], y[l]}});
+            for (int c = 0; c < 4; ++c) {
+                const float w = wide[c][l];
+                ASSERT_EQ(std::memcmp(&w, &scalar[c], 4), 0) << round << " lane " << l;
+                if (l < 8) {
+                    const float w8 = wide8[c][l];
+                    ASSERT_EQ(std::memcmp(&w8, &scalar[c], 4), 0) << round << " lane " << l;
+                }
+            }
+        }
+    }
+}
+
 // The scene agrees with SCENES.md's definition computed in double: every pixel of a 320×180 and a
 // 997×613 rendering within 1/255 (the fast exp's ulps and float rounding stay far below it).
 TEST(MediaScene, AgreesWithTheDefinitionInDouble) {

@@ -245,13 +245,12 @@ inline Float8 expm18(Float8 x) {
 
 }  // namespace detail
 
-// The radiance and transmittance of one view ray (header: the rule and its skipping).
+// The radiance and transmittance of one view ray over its stretch [t0, t1] inside the box (header:
+// the rule and its skipping). The caller clips: t0 = max(t_near, 0), t1 = t_far of slabInterval.
 template <class Observer = NoMarchObserver>
 MarchResult marchMetaballs(const MetaballVolume& v, const VolumeLight& light, const MarchSettings& settings,
-                           const glm::vec3& eye, const glm::vec3& d, Observer&& observe = {}) {
+                           const glm::vec3& eye, const glm::vec3& d, float t0, float t1, Observer&& observe = {}) {
     MarchResult result;
-    const auto [t_near, t_far] = slabInterval(v.box, eye, d);
-    const float t0 = std::max(t_near, 0.0f), t1 = t_far;
     if (!(t1 > t0)) return result;
     float phase = -1.0f;  // computed at the first sample that scatters (most rays have none)
     const glm::vec3 inv_light = 1.0f / light.toLight;
@@ -300,6 +299,14 @@ MarchResult marchMetaballs(const MetaballVolume& v, const VolumeLight& light, co
         for (int32_t l = 0; l < lanes; ++l) step(uint32_t(i0 + l), mu[l], shadow_t[l], e[l]);
     }
     return result;
+}
+
+// The same from the eye: the ray clipped to the box first.
+template <class Observer = NoMarchObserver>
+MarchResult marchMetaballs(const MetaballVolume& v, const VolumeLight& light, const MarchSettings& settings,
+                           const glm::vec3& eye, const glm::vec3& d, Observer&& observe = {}) {
+    const auto [t_near, t_far] = slabInterval(v.box, eye, d);
+    return marchMetaballs(v, light, settings, eye, d, std::max(t_near, 0.0f), t_far, observe);
 }
 
 }  // namespace raster::media

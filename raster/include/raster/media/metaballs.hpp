@@ -13,6 +13,8 @@
 #include <glm/glm.hpp>
 #include <utility>
 
+#include "raster/simd.hpp"
+
 namespace raster::media {
 
 struct Metaball {
@@ -26,20 +28,21 @@ struct Box {
 };
 
 // The slab test: the ray o + t·d meets the box for t in [first, second] (first > second where it
-// misses). d's components may be 0 (then 1/d is ±∞, and an origin inside the slab gives (−∞, ∞)).
-// An origin exactly on a slab's plane with d = 0 there counts as inside.
-inline std::pair<float, float> slabInterval(const Box& box, const glm::vec3& o, const glm::vec3& d) {
-    float t_near = -INFINITY, t_far = INFINITY;
+// misses). d's components may be 0: the slab then holds the whole line (o inside it, bounds
+// included) or none of it. T is float, Float8 or Float8x2 (one ray per lane, the same origin): the
+// same operations per lane, so the eight-wide pixel shader and the scalar one agree bit for bit.
+template <class T>
+std::pair<T, T> slabInterval(const Box& box, const glm::vec3& o, const glm::vec<3, T>& d) {
+    T t_near(-INFINITY), t_far(INFINITY);
     for (int a = 0; a < 3; ++a) {
-        if (d[a] == 0.0f) {
-            if (o[a] < box.lo[a] || o[a] > box.hi[a]) return {INFINITY, -INFINITY};
-            continue;
-        }
-        const float inv = 1.0f / d[a];
-        float t_lo = (box.lo[a] - o[a]) * inv, t_hi = (box.hi[a] - o[a]) * inv;
-        if (t_lo > t_hi) std::swap(t_lo, t_hi);
-        t_near = std::max(t_near, t_lo);
-        t_far = std::min(t_far, t_hi);
+        const T inv = T(1.0f) / d[a];
+        const T t_a = T(box.lo[a] - o[a]) * inv, t_b = T(box.hi[a] - o[a]) * inv;
+        const auto swapped = t_b < t_a;
+        const T lo = select(swapped, t_b, t_a), hi = select(swapped, t_a, t_b);
+        const bool inside = o[a] >= box.lo[a] && o[a] <= box.hi[a];
+        const auto parallel = d[a] == T(0.0f);
+        t_near = select(parallel, inside ? t_near : T(INFINITY), select(t_near < lo, lo, t_near));
+        t_far = select(parallel, inside ? t_far : T(-INFINITY), select(hi < t_far, hi, t_far));
     }
     return {t_near, t_far};
 }
