@@ -13,16 +13,7 @@ namespace raster {
 
 namespace {
 
-// The light, background and phase of SCENES.md's `media`.
-media::VolumeLight mediaSceneLight() {
-    media::VolumeLight light;
-    light.toLight = glm::normalize(glm::vec3(0.4f, 1.0f, 0.3f));
-    light.sun = {14.0f, 13.0f, 11.0f};
-    light.ambient = {0.10f, 0.12f, 0.18f};
-    light.g = 0.4f;
-    light.albedo = 0.9f;
-    return light;
-}
+using media::mediaSceneLight;
 constexpr glm::vec3 kMediaBackground{0.08f, 0.10f, 0.16f};
 
 class MediaMarchScene final : public Scene {

@@ -113,6 +113,17 @@ struct VolumeLight {
     float albedo = 1.0f;                  // single-scattering albedo μs/μ
 };
 
+// The light and phase of SCENES.md's `media` (its scene and `raster bench error` march with it).
+inline VolumeLight mediaSceneLight() {
+    VolumeLight light;
+    light.toLight = glm::normalize(glm::vec3(0.4f, 1.0f, 0.3f));
+    light.sun = {14.0f, 13.0f, 11.0f};
+    light.ambient = {0.10f, 0.12f, 0.18f};
+    light.g = 0.4f;
+    light.albedo = 0.9f;
+    return light;
+}
+
 enum class SkipMethod : uint8_t { none, balls, grid };
 
 inline const char* skipMethodName(SkipMethod m) {
