@@ -1333,3 +1333,32 @@ TEST_F(ViewerTest, PngSolutionsAndTheirSize) {
 
 }  // namespace
 }  // namespace raster::tools
+
+// The march panel of a media scene's pixel: L rises from 0 to the march's L (the samples' added
+// radiance), T falls from 1 to the march's T, s runs from the box's entry to its exit; scenes
+// without a medium have no march.
+TEST(MarchPlot, FollowsThePixelsMarchFromEntryToExit) {
+    raster::SceneOptions options;
+    options.width = 160, options.height = 90;
+    const auto media = raster::makeScene("media", options);
+    const std::optional<raster::PixelMarch> march = media->pixelMarch(80, 45, 160, 90);
+    ASSERT_TRUE(march.has_value());
+    ASSERT_GT(march->samples.size(), 10u);
+    const raster::tools::MarchPlot plot = raster::tools::marchPlot(*march);
+    ASSERT_EQ(plot.radiance.size(), march->samples.size() + 2);
+    ASSERT_EQ(plot.transmittance.size(), plot.radiance.size());
+    EXPECT_EQ(plot.radiance.front(), glm::vec2(march->t0, 0.0f));
+    EXPECT_EQ(plot.transmittance.front(), glm::vec2(march->t0, 1.0f));
+    const float mean_l = (march->radiance.r + march->radiance.g + march->radiance.b) / 3.0f;
+    EXPECT_NEAR(plot.radiance.back().y, mean_l, 1e-5f * mean_l);
+    EXPECT_EQ(plot.transmittance.back(), glm::vec2(march->t1, march->transmittance));
+    for (size_t i = 1; i < plot.radiance.size(); ++i) {
+        EXPECT_GE(plot.radiance[i].x, plot.radiance[i - 1].x) << i;
+        EXPECT_GE(plot.radiance[i].y, plot.radiance[i - 1].y) << i;
+        EXPECT_LE(plot.transmittance[i].y, plot.transmittance[i - 1].y * (1.0f + 1e-5f)) << i;
+        EXPECT_LE(plot.radiance[i].y, plot.lMax) << i;
+    }
+    EXPECT_LT(march->transmittance, 0.5f);
+    EXPECT_NE(plot.caption.find(std::to_string(march->samples.size()) + " samples"), std::string::npos);
+    EXPECT_FALSE(raster::makeScene("fog", options)->pixelMarch(80, 45, 160, 90).has_value());
+}

@@ -2,7 +2,9 @@
 // with shadow rays (raster/media/metaball_march.hpp), as one full-screen draw whose pixel shader marches
 // each pixel's view ray (raster/shaders/media.hpp). Empty space is skipped exactly through a grid of
 // kMediaGridCells³ cells over the medium's box (docs/PERFORMANCE.md, "media": the grid size measured).
+#include <algorithm>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "raster/pipeline_impl.hpp"
@@ -13,16 +15,7 @@ namespace raster {
 
 namespace {
 
-// The light, background and phase of SCENES.md's `media`.
-media::VolumeLight mediaSceneLight() {
-    media::VolumeLight light;
-    light.toLight = glm::normalize(glm::vec3(0.4f, 1.0f, 0.3f));
-    light.sun = {14.0f, 13.0f, 11.0f};
-    light.ambient = {0.10f, 0.12f, 0.18f};
-    light.g = 0.4f;
-    light.albedo = 0.9f;
-    return light;
-}
+using media::mediaSceneLight;
 constexpr glm::vec3 kMediaBackground{0.08f, 0.10f, 0.16f};
 
 class MediaMarchScene final : public Scene {
@@ -42,6 +35,25 @@ public:
         layout_ = InputLayout(desc);
     }
     std::string_view name() const override { return "media"; }
+
+    // The pixel shader's march at the pixel's centre: ndc as the full-screen triangle interpolates it
+    // there (y up), the shader's ray and settings, every evaluated sample recorded.
+    std::optional<PixelMarch> pixelMarch(uint32_t x, uint32_t y, uint32_t width, uint32_t height) const override {
+        const glm::vec2 ndc{(float(x) + 0.5f) / float(width) * 2.0f - 1.0f,
+                            1.0f - (float(y) + 0.5f) / float(height) * 2.0f};
+        const glm::vec3 d = shaders::viewRay(ps_.invViewProj, ndc);
+        PixelMarch march;
+        const media::MarchResult r = media::marchMetaballs(*ps_.volume, ps_.light, ps_.settings, ps_.eye, d,
+                                                           [&](const media::MarchSample& s) { march.samples.push_back(s); });
+        const auto [t_near, t_far] = media::slabInterval(ps_.volume->box, ps_.eye, d);
+        march.steps = ps_.settings.steps;
+        march.t0 = std::max(t_near, 0.0f), march.t1 = t_far;
+        march.ds = (march.t1 - march.t0) / float(march.steps);
+        march.radiance = r.radiance, march.transmittance = r.transmittance, march.background = ps_.background;
+        march.colour = glm::clamp(r.radiance + r.transmittance * ps_.background, 0.0f, 1.0f);
+        march.densityEvaluations = r.densityEvaluations;
+        return march;
+    }
 
     void render(Context& context, RenderTarget& color, DepthTarget& depth) override {
         beginSceneFrame(context, color, depth);

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "bench_blend.hpp"
+#include "bench_error.hpp"
 #include "bench_soft.hpp"
 #include "bench_timing.hpp"
 #include "commands.hpp"
@@ -35,6 +36,7 @@ struct BenchArgs {
     std::string out;
     bool reference = false, plain = false, noError = false;
     bool turbulence = false;  // particles-sim: add curl-noise turbulence
+    ErrorBenchArgs error;     // error: --out-dir, --rays, --seed
 };
 
 // An animated scene's time per benchmark frame: one fixed step of the fire's simulation.
@@ -69,6 +71,11 @@ int runParticlesSim(const BenchArgs& args) {
 
 int runBench(const BenchArgs& args) {
     if (args.scene == kParticlesSim) return runParticlesSim(args);
+    if (args.scene == kErrorBench) {
+        ErrorBenchArgs error = args.error;
+        error.seed = args.options.seed;
+        return runErrorBench(error);
+    }
     if (args.scene == kBlendFigures)
         return runBlendFigures(args.options, args.frames, args.threads, args.out);
     if (args.scene == kSoftParticlesBench)
@@ -120,6 +127,7 @@ Command addBench(CLI::App& app) {
     names.push_back(kParticlesSim);
     names.push_back(kSoftParticlesBench);
     names.push_back(kBlendFigures);
+    names.push_back(kErrorBench);
     command
         ->add_option(
             "scene", args->scene,
@@ -139,6 +147,8 @@ Command addBench(CLI::App& app) {
                       "every primitive through the plain path (fill/quads.hpp): for stepping in a debugger");
     command->add_flag("--no-error", args->noError, "skip the error against the reference pipeline");
     command->add_flag("--turbulence", args->turbulence, "particles-sim: add curl-noise turbulence");
+    command->add_option("--out-dir", args->error.outDir, "error: the folder for error.csv and error.png");
+    addWholeNumber(*command, "--rays", args->error.rays, 1, 1'000'000, "error: rays per medium");
     command->footer(
         "Prints the fast pipeline's error against the reference pipeline (skip with --no-error), then\n"
         "'raster <scene> <W>x<H> ms_per_frame_median=<t> frames=<K>'. An animated scene (fire) starts\n"
@@ -151,7 +161,10 @@ Command addBench(CLI::App& app) {
         "differences' heat maps (<scene>-diff.png) into the folder DIR.\n"
         "soft-particles renders the smoke at full resolution, at 1/2 and 1/4 with and without the edge\n"
         "fix, for --count particles (default 1000 to 100000), and prints a table: the median frame time\n"
-        "and the errors against full resolution (docs/SOFT_PARTICLES.md); --out DIR writes its figures.");
+        "and the errors against full resolution (docs/SOFT_PARTICLES.md); --out DIR writes its figures.\n"
+        "error sweeps the media integrators and accuracy knobs on --rays rays drawn from --seed against a\n"
+        "float64 reference, prints the table and the time to reach 1e-2, 1e-3 and 0.5/255, and writes\n"
+        "--out-dir/error.csv and error.png (gnuplot; docs/ACCURACY.md).");
     return {command, [args] { return runBench(*args); }};
 }
 

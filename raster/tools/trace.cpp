@@ -1,17 +1,22 @@
 // raster trace <scene>: renders one frame of a scene with the pipeline trace on and prints
 //   --stats         the pipeline statistics of each draw and of the frame
 //   --pixel X,Y     the pixel's history: every fragment that reached it, in order, with its depth
-//                   test and blend (as a table, or with --json as one JSON object for tools)
+//                   test and blend (as a table, or with --json as one JSON object for tools); in a
+//                   media scene (Scene::pixelMarch) the pixel's ray march instead, sample by sample
 //   --draw N        draw N's geometry: input-assembler vertices, vertex and geometry shader
 //                   outputs, primitives after clipping and setup (the first --limit of each)
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "commands.hpp"
 #include "options.hpp"
 #include "raster/scenes.hpp"
+#include "raster/shader_context.hpp"
 #include "raster/trace.hpp"
 
 namespace raster::tools {
@@ -45,6 +50,44 @@ void printTrace(const TraceArgs& args, const Context& context, const Trace& trac
                    stdout);
 }
 
+// A colour channel in [0, 1] as the render target's 8 bits store it.
+int toByte(float v) {
+    return int(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
+}
+
+// The march of a media scene's pixel: one line per evaluated sample (the skipped stretches, where the
+// medium is empty and nothing is added, summarised), then L, T and the colour, and the rendered
+// pixel's bytes beside the colour's.
+void printPixelMarch(const PixelMarch& m, uint32_t x, uint32_t y, const RenderTarget& color) {
+    std::printf("pixel (%u, %u): ray march, %u steps of ds=%.6g m over s in [%.6g, %.6g]; %zu samples evaluated, "
+                "%u density evaluations\n",
+                x, y, m.steps, double(m.ds), double(m.t0), double(m.t1), m.samples.size(), m.densityEvaluations);
+    std::printf("%6s %10s %12s %12s %12s %12s %12s %12s %12s\n", "i", "s", "mu", "mu*ds", "T", "T_shadow",
+                "added.r", "added.g", "added.b");
+    uint32_t next = 0;
+    auto skipped = [&](uint32_t upto) {
+        if (upto > next) std::printf("%6s samples %u..%u skipped: empty, nothing added\n", "...", next, upto - 1);
+    };
+    for (const media::MarchSample& s : m.samples) {
+        skipped(s.index);
+        std::printf("%6u %10.6f %12.9g %12.9g %12.9g %12.9g %12.9g %12.9g %12.9g\n", s.index, double(s.s),
+                    double(s.extinction), double(s.opticalStep), double(s.transmittance),
+                    double(s.shadowTransmittance), double(s.added.r), double(s.added.g), double(s.added.b));
+        next = s.index + 1;
+    }
+    if (m.t1 > m.t0) skipped(m.steps);
+    std::printf("L = (%.9g, %.9g, %.9g)  T = %.9g  L_bg = (%.9g, %.9g, %.9g)\n", double(m.radiance.r),
+                double(m.radiance.g), double(m.radiance.b), double(m.transmittance), double(m.background.r),
+                double(m.background.g), double(m.background.b));
+    const std::vector<uint8_t> rgba = color.toRgba8();
+    const uint8_t* p = rgba.data() + (size_t(y) * color.width() + x) * 4;
+    const int r = toByte(m.colour.r), g = toByte(m.colour.g), b = toByte(m.colour.b);
+    std::printf("colour = clamp(L + T*L_bg) = (%.9g, %.9g, %.9g) = rgb8 (%d, %d, %d)\n", double(m.colour.r),
+                double(m.colour.g), double(m.colour.b), r, g, b);
+    const bool same = p[0] == r && p[1] == g && p[2] == b;
+    std::printf("rendered pixel: rgb8 (%d, %d, %d) %s\n", p[0], p[1], p[2], same ? "same" : "DIFFERENT");
+}
+
 int runTrace(const TraceArgs& args) {
     const SceneOptions& options = args.options;
     const bool pixel = args.pixel, geometry = args.geometry;
@@ -68,6 +111,18 @@ int runTrace(const TraceArgs& args) {
     context.resetFrameStatistics();
     if (pixel || geometry) context.setTrace(&trace);
     scene->render(context, color, depth);
+    if (pixel) {
+        detail::tReferenceMode = args.reference;  // the march's exp as the render's pixel shader ran it
+        const std::optional<PixelMarch> march = scene->pixelMarch(args.px, args.py, options.width, options.height);
+        detail::tReferenceMode = false;
+        if (march) {
+            printPixelMarch(*march, args.px, args.py, color);
+            TraceArgs rest = args;
+            rest.pixel = false;
+            printTrace(rest, context, trace);
+            return 0;
+        }
+    }
     printTrace(args, context, trace);
     return 0;
 }

@@ -18,6 +18,8 @@
 #include <string_view>
 #include <vector>
 
+#include "raster/pixel_march.hpp"
+
 #include "raster/pipeline.hpp"
 #include "raster/texture.hpp"
 
@@ -91,6 +93,13 @@ public:
     virtual void render(Context& context, RenderTarget& color, DepthTarget& depth) = 0;
 
     virtual bool animated() const { return false; }
+    // A scene whose pixels march a ray through a medium: pixel (x, y)'s march in a width × height
+    // target, sample by sample, as its pixel shader runs it (`raster trace --pixel`, the viewer's march
+    // plot); nullopt for the other scenes.
+    virtual std::optional<PixelMarch> pixelMarch(uint32_t /*x*/, uint32_t /*y*/, uint32_t /*width*/,
+                                                 uint32_t /*height*/) const {
+        return std::nullopt;
+    }
     // The clock, in seconds: the start time plus every advance so far (0 for a static scene).
     virtual double time() const { return 0.0; }
     // Moves the clock on by `seconds` (finite and ≥ 0, else Error(InvalidArgument) naming it) and

@@ -178,6 +178,9 @@ std::shared_ptr<RenderedFrame> RenderWorker::render(Context& context, uint64_t i
         frame->drawCount = context.drawCount();
         frame->animated = scene.animated();
         frame->sceneTime = scene.time();
+        const TraceRequest& t = request.trace;
+        if (t.pixel && t.x >= 0 && t.y >= 0 && uint32_t(t.x) < request.scene.width && uint32_t(t.y) < request.scene.height)
+            frame->march = scene.pixelMarch(uint32_t(t.x), uint32_t(t.y), request.scene.width, request.scene.height);
     } catch (const std::exception& e) {  // raster::Error, or running out of memory for a huge window
         frame->error = e.what();
     }

@@ -77,6 +77,7 @@ struct RenderedFrame {
     bool animated = false;         // the scene's Scene::animated()
     double sceneTime = 0;          // its clock when it rendered this frame (Scene::time())
     std::unique_ptr<Trace> trace;  // when request.trace.any()
+    std::optional<PixelMarch> march;  // when request.trace.pixel in a media scene: its ray march
     // When request.solution: the solution scene at the frame's size, camera (the frame's scene's
     // own when request.scene.camera is unset) and step limit, never traced.
     std::optional<RenderTarget> solution;

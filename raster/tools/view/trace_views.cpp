@@ -275,4 +275,26 @@ std::vector<std::string> compactPixelHistory(const Trace& trace, int32_t x, int3
     return lines;
 }
 
+MarchPlot marchPlot(const PixelMarch& march) {
+    MarchPlot plot;
+    plot.sMin = march.t0, plot.sMax = std::max(march.t1, march.t0);
+    float L = 0.0f;
+    plot.radiance.push_back({march.t0, 0.0f});
+    plot.transmittance.push_back({march.t0, 1.0f});
+    for (const media::MarchSample& s : march.samples) {
+        L += (s.added.r + s.added.g + s.added.b) / 3.0f;
+        const float end = s.s + 0.5f * march.ds;  // past the sample's step
+        plot.radiance.push_back({end, L});
+        plot.transmittance.push_back({end, s.transmittance * std::exp(-s.opticalStep)});
+        plot.lMax = std::max(plot.lMax, L);
+    }
+    plot.radiance.push_back({plot.sMax, L});
+    plot.transmittance.push_back({plot.sMax, march.transmittance});
+    char text[160];
+    std::snprintf(text, sizeof text, "L (mean rgb, green) and T (white) along the ray: %zu samples, L = %.4g, T = %.4g",
+                  march.samples.size(), double(L), double(march.transmittance));
+    plot.caption = text;
+    return plot;
+}
+
 }  // namespace raster::tools

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "raster/pixel_march.hpp"
 #include "raster/states.hpp"
 #include "raster/trace.hpp"
 
@@ -79,5 +80,15 @@ const TraceDraw* findTraceDraw(const Trace& trace, uint32_t draw);
 // The pixel history panel: a header line, then one tab-separated row per fragment (at most
 // `maxRows`, then how many more).
 std::vector<std::string> compactPixelHistory(const Trace& trace, int32_t x, int32_t y, size_t maxRows);
+
+// The march panel of a media scene's pixel: L (the mean of its channels, gathered from the eye) and T
+// along the ray, as points (s in metres, value) from the box's entry (L = 0, T = 1) to past each
+// evaluated sample's step; lMax the largest L (the plot's scale, at least 1e-6).
+struct MarchPlot {
+    std::vector<glm::vec2> radiance, transmittance;
+    float sMin = 0.0f, sMax = 0.0f, lMax = 1e-6f;
+    std::string caption;  // "L (mean rgb) and T along the ray: N samples, L = .., T = .."
+};
+MarchPlot marchPlot(const PixelMarch& march);
 
 }  // namespace raster::tools

@@ -28,6 +28,7 @@
 #include "raster/image_io.hpp"
 #include "render_worker.hpp"
 #include "step_cursor.hpp"
+#include "trace_views.hpp"
 
 struct SDL_Window;
 struct SDL_Renderer;
@@ -106,6 +107,7 @@ class Viewer {
     bool upToDate() const { return shown_id_ == requested_id_; }
     void uploadImage();
     void composeWindow();  // the frame and the text, not yet presented
+    void drawMarchPlot(const MarchPlot& plot, int room_x, int bottom, int scale);
     void drawWindow();
     void saveScreenshot();
     void reportPixel(int windowX, int windowY);

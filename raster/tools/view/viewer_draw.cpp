@@ -369,6 +369,36 @@ void Viewer::composeWindow() {
     history = fitPanel(std::move(history), room_x, window_height - 2 * kPanelMargin, scale);
     history.x = kPanelMargin, history.y = window_height - panelSize(history, scale).y - kPanelMargin;
     drawPanel(renderer_, history, scale);
+    if (shownHasHistory() && shown_->march) drawMarchPlot(marchPlot(*shown_->march), room_x, history.y, scale);
+}
+
+// A media pixel's march above the history panel: L (green) and T (white) against s, T on [0, 1] and L
+// on [0, lMax], the caption above.
+void Viewer::drawMarchPlot(const MarchPlot& plot, int room_x, int bottom, int scale) {
+    const int w = std::min(room_x, 360 * scale), h = 110 * scale;
+    const int left = kPanelMargin, top = bottom - h - kPanelMargin;
+    if (w < 40 || top < kPanelMargin) return;
+    SDL_SetRenderDrawColor(renderer_, 0, 0, 0, 200);
+    const SDL_Rect box{left, top, w, h};
+    SDL_RenderFillRect(renderer_, &box);
+    const float span = std::max(plot.sMax - plot.sMin, 1e-6f);
+    auto toWindow = [&](const std::vector<glm::vec2>& points, float scale_y) {
+        std::vector<SDL_Point> out;
+        for (const glm::vec2& p : points)
+            out.push_back({left + int((p.x - plot.sMin) / span * float(w - 1)), top + h - 1 - int(p.y / scale_y * float(h - 1))});
+        return out;
+    };
+    const std::vector<SDL_Point> t = toWindow(plot.transmittance, 1.0f), l = toWindow(plot.radiance, plot.lMax);
+    SDL_SetRenderDrawColor(renderer_, 255, 255, 255, 255);
+    SDL_RenderDrawLines(renderer_, t.data(), int(t.size()));
+    SDL_SetRenderDrawColor(renderer_, 80, 255, 120, 255);
+    SDL_RenderDrawLines(renderer_, l.data(), int(l.size()));
+    TextPanel caption;
+    caption.lines = {plot.caption};
+    caption.color = {200, 255, 220, 255};
+    caption = fitPanel(std::move(caption), room_x, top, scale);
+    caption.x = left, caption.y = top - panelSize(caption, scale).y;
+    if (caption.y >= 0) drawPanel(renderer_, caption, scale);
 }
 
 void Viewer::saveScreenshot() {

@@ -37,6 +37,7 @@
 #include "raster/media/majorant_grid.hpp"
 #include "raster/media/metaballs.hpp"
 #include "raster/media/phase_functions.hpp"
+#include "raster/pixel_march.hpp"
 #include "raster/simd.hpp"
 
 namespace raster::media {
@@ -113,6 +114,17 @@ struct VolumeLight {
     float albedo = 1.0f;                  // single-scattering albedo μs/μ
 };
 
+// The light and phase of SCENES.md's `media` (its scene and `raster bench error` march with it).
+inline VolumeLight mediaSceneLight() {
+    VolumeLight light;
+    light.toLight = glm::normalize(glm::vec3(0.4f, 1.0f, 0.3f));
+    light.sun = {14.0f, 13.0f, 11.0f};
+    light.ambient = {0.10f, 0.12f, 0.18f};
+    light.g = 0.4f;
+    light.albedo = 0.9f;
+    return light;
+}
+
 enum class SkipMethod : uint8_t { none, balls, grid };
 
 inline const char* skipMethodName(SkipMethod m) {
@@ -128,17 +140,6 @@ struct MarchSettings {
     uint32_t steps = 32;                  // N along the view ray (≥ 1)
     uint32_t shadowSteps = 6;             // M along each shadow ray (≥ 1)
     SkipMethod skip = SkipMethod::balls;  // header: every method gives the same bits
-};
-
-// What one evaluated sample did, for the trace and the viewer's march plot.
-struct MarchSample {
-    uint32_t index = 0;
-    float s = 0.0f;                    // metres from the eye
-    float extinction = 0.0f;           // μ_i, 1/m
-    float opticalStep = 0.0f;          // μ_i·Δs
-    float transmittance = 1.0f;        // T from the eye to the sample's step, before it
-    float shadowTransmittance = 1.0f;  // e^{−τ_l} (1 where μ_i = 0: no shadow ray)
-    glm::vec3 added{0.0f};             // the radiance the step added to L
 };
 
 struct MarchResult {
