@@ -136,6 +136,10 @@ const std::vector<BuiltinScene>& builtinScenes() {
         for (std::string_view name : fogFigureNames()) list.push_back({name, kFogCamera, makeFogFigureChecked});
         list.push_back({"media-closed-form", kMediaCamera, makeMediaChecked});
         list.push_back({"media", kMediaMarchCamera, makeNamed<makeMediaMarchScene>});
+        for (std::string_view name : mediaFigureNames())
+            list.push_back({name, name == "media-absorption" || name == "media-emission" ? kMediaFigureCamera
+                                                                                         : kMediaPanelCamera,
+                            makeMediaFigureScene});
         for (std::string_view name : blendingSceneNames())
             list.push_back({name, kBlendCamera, makeBlendingScene});
         return list;
