@@ -63,36 +63,45 @@ TEST(MediaFigures, SameBitsAtOneTwoAndEightThreads) {
     }
 }
 
-// q = 0: every pixel at most the background's (the same scene with σa = 0), channel by channel, and the
-// medium darkens a good part of the picture by more than 0.1.
-TEST(MediaFigures, AbsorptionOnlyNeverBrightens) {
+namespace {
+
+// The scene against itself with its medium's coefficient set to 0 (the background alone): how many
+// channels moved against `sign` (+1: may only brighten, −1: may only darken), and how many pixels moved
+// with it by more than 25/255 in red.
+struct AgainstBackground {
+    size_t wrongWay = 0, moved = 0, pixels = 0;
+};
+AgainstBackground compareWithBackground(const char* name, int sign) {
     SceneOptions options{.width = 320, .height = 180};
-    const std::vector<uint8_t> image = renderBytes("media-absorption", options);
-    options.fogSigma = glm::vec3(0.0f);
-    const std::vector<uint8_t> background = renderBytes("media-absorption", options);
-    size_t brighter = 0, darkened = 0;
+    const std::vector<uint8_t> image = renderBytes(name, options);
+    (sign > 0 ? options.fogSource : options.fogSigma) = glm::vec3(0.0f);
+    const std::vector<uint8_t> background = renderBytes(name, options);
+    AgainstBackground r;
+    r.pixels = image.size() / 4;
     for (size_t i = 0; i < image.size(); ++i) {
-        brighter += image[i] > background[i];
-        darkened += i % 4 == 0 && background[i] - image[i] > 25;
+        const int change = sign * (int(image[i]) - int(background[i]));
+        r.wrongWay += change < 0;
+        r.moved += i % 4 == 0 && change > 25;
     }
-    EXPECT_EQ(brighter, 0u);
-    EXPECT_GT(darkened, image.size() / 4 / 20) << "the medium should darken at least 5 % of the pixels";
+    return r;
 }
 
-// μ = 0: every pixel at least the background's (the same scene with ε = 0), and the glow adds more
-// than 0.1 to a good part of the picture.
+}  // namespace
+
+// q = 0: no channel of any pixel brighter than the background's, and the medium darkens 5 % of the
+// picture by more than 0.1.
+TEST(MediaFigures, AbsorptionOnlyNeverBrightens) {
+    const AgainstBackground r = compareWithBackground("media-absorption", -1);
+    EXPECT_EQ(r.wrongWay, 0u);
+    EXPECT_GT(r.moved, r.pixels / 20) << "the medium should darken at least 5 % of the pixels";
+}
+
+// μ = 0: no channel darker than the background's, and the glow brightens 5 % of the picture by more
+// than 0.1.
 TEST(MediaFigures, EmissionOnlyNeverDarkens) {
-    SceneOptions options{.width = 320, .height = 180};
-    const std::vector<uint8_t> image = renderBytes("media-emission", options);
-    options.fogSource = glm::vec3(0.0f);
-    const std::vector<uint8_t> background = renderBytes("media-emission", options);
-    size_t darker = 0, glowing = 0;
-    for (size_t i = 0; i < image.size(); ++i) {
-        darker += image[i] < background[i];
-        glowing += i % 4 == 0 && image[i] - background[i] > 25;
-    }
-    EXPECT_EQ(darker, 0u);
-    EXPECT_GT(glowing, image.size() / 4 / 20) << "the medium should glow over at least 5 % of the pixels";
+    const AgainstBackground r = compareWithBackground("media-emission", +1);
+    EXPECT_EQ(r.wrongWay, 0u);
+    EXPECT_GT(r.moved, r.pixels / 20) << "the medium should glow over at least 5 % of the pixels";
 }
 
 // The panels isotropic | Rayleigh | HG see the same cloud under the same light: where the pixel's view

@@ -33,6 +33,16 @@ inline SceneOptions occluderOnly(const SceneOptions& o, const SceneCamera& camer
     return occluder;
 }
 
+// A triangle that covers the viewport: clip-space corners (−1, −1), (3, −1), (−1, 3) as an R32G32
+// POSITION (shaders::VsMediaRay's input), for the scenes whose pixel shader marches each pixel's ray.
+// bind() sets it with the state such a draw needs: a triangle list, opaque, no depth test.
+struct FullScreenTriangle {
+    FullScreenTriangle();
+    void bind(Context& context) const;
+    VertexBuffer vertices;
+    InputLayout layout;
+};
+
 // Options already checked by makeScene.
 std::unique_ptr<Scene> makeParticlesScene(const SceneOptions& options);
 std::unique_ptr<Scene> makeFogScene(const SceneOptions& options);

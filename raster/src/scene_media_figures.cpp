@@ -158,20 +158,12 @@ class MediaFigureScene final : public Scene {
         const SceneCamera camera = o.camera.value_or(defaultCamera(name));
         const glm::mat4 inv_view_proj = glm::inverse(sceneProjection(panel) * sceneView(camera));
         for (PsFigure& p : panels_) p.invViewProj = inv_view_proj, p.eye = camera.eye, p.volume = &volume_;
-        const std::vector<glm::vec2> triangle = {{-1, -1}, {3, -1}, {-1, 3}};
-        triangle_ = VertexBuffer::create(triangle);
-        const InputElementDesc desc[] = {{"POSITION", 0, Format::R32G32_FLOAT, 0, 0}};
-        layout_ = InputLayout(desc);
     }
     std::string_view name() const override { return name_; }
 
     void render(Context& context, RenderTarget& color, DepthTarget& depth) override {
         beginSceneFrame(context, color, depth);
-        context.setBlendState(BlendState::opaque());
-        context.setPrimitiveTopology(Topology::TriangleList);
-        context.setDepthStencilState(DepthStencilState::disabled());
-        context.setInputLayout(&layout_);
-        context.setVertexBuffer(0, &triangle_);
+        triangle_.bind(context);
         for (size_t k = 0; k < panels_.size(); ++k) {
             context.setViewport({panel_width_ * float(k), 0.0f, panel_width_, float(color.height()), 0.0f, 1.0f});
             context.draw(vs_, panels_[k], 3);
@@ -183,8 +175,7 @@ class MediaFigureScene final : public Scene {
     media::MetaballVolume volume_;
     std::vector<PsFigure> panels_;
     float panel_width_ = 1.0f;
-    VertexBuffer triangle_;
-    InputLayout layout_;
+    FullScreenTriangle triangle_;
     shaders::VsMediaRay vs_;
 };
 

@@ -59,6 +59,21 @@ void beginSceneFrame(Context& context, RenderTarget& color, DepthTarget& depth) 
     context.setCoverageTest(nullptr);
 }
 
+FullScreenTriangle::FullScreenTriangle() {
+    const std::vector<glm::vec2> corners = {{-1, -1}, {3, -1}, {-1, 3}};
+    vertices = VertexBuffer::create(corners);
+    const InputElementDesc desc[] = {{"POSITION", 0, Format::R32G32_FLOAT, 0, 0}};
+    layout = InputLayout(desc);
+}
+
+void FullScreenTriangle::bind(Context& context) const {
+    context.setBlendState(BlendState::opaque());
+    context.setPrimitiveTopology(Topology::TriangleList);
+    context.setDepthStencilState(DepthStencilState::disabled());
+    context.setInputLayout(&layout);
+    context.setVertexBuffer(0, &vertices);
+}
+
 namespace {
 
 // Filled before main by the labs' static registrations, so a function-local static: the order in
