@@ -7,10 +7,11 @@
 //                     room, dimmed: it glows, L = L_bg + ∫q ds, and hides nothing.
 //   media-scattering  three panels, left to right: isotropic, Rayleigh, Henyey–Greenstein (g = 0.7).
 //                     A white, scattering cloud (albedo 0.95) lit by a directional light from behind
-//                     it, slightly above (its disc drawn in the sky, partly behind the cloud), with
-//                     shadow rays and a faint ambient term: the view looks towards the light, where
-//                     HG's forward lobe lights the cloud's thin edges brightly and Rayleigh (symmetric,
-//                     3/(16π)·(1 + cos²θ)) stays close to isotropic.
+//                     it and a little above (its disc drawn in the sky above the cloud), with shadow
+//                     rays and a faint ambient term: the view looks towards the light, where HG's
+//                     forward lobe lights the cloud's thin edges brightly and Rayleigh (symmetric,
+//                     3/(16π)·(1 + cos²θ)) stays close to isotropic. Shown as 1 − e^{−L} per channel,
+//                     so that HG's peak (19 times isotropic's) does not clip.
 //   media-euler       three panels, left to right: the lecture's forward Euler step and the exponential
 //                     step, both with kEulerFigureSteps steps per ray, and the converged reference (the
 //                     midpoint exponential step, kReferenceSteps steps). The medium absorbs and emits
@@ -23,7 +24,6 @@
 //
 // Drawn through the teaching pipeline (raster/teaching_draw.hpp): figures, compiled in seconds.
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <string>
 #include <vector>
