@@ -33,6 +33,16 @@ inline SceneOptions occluderOnly(const SceneOptions& o, const SceneCamera& camer
     return occluder;
 }
 
+// A triangle that covers the viewport: clip-space corners (−1, −1), (3, −1), (−1, 3) as an R32G32
+// POSITION (shaders::VsMediaRay's input), for the scenes whose pixel shader marches each pixel's ray.
+// bind() sets it with the state such a draw needs: a triangle list, opaque, no depth test.
+struct FullScreenTriangle {
+    FullScreenTriangle();
+    void bind(Context& context) const;
+    VertexBuffer vertices;
+    InputLayout layout;
+};
+
 // Options already checked by makeScene.
 std::unique_ptr<Scene> makeParticlesScene(const SceneOptions& options);
 std::unique_ptr<Scene> makeFogScene(const SceneOptions& options);
@@ -47,6 +57,13 @@ std::unique_ptr<Scene> makeMediaClosedFormScene(const SceneOptions& options);
 constexpr SceneCamera kMediaMarchCamera{{0, 0.4f, 3}, {0, 0.2f, 0}};
 constexpr int kMediaGridCells = 16;
 std::unique_ptr<Scene> makeMediaMarchScene(const SceneOptions& options);
+// The lecture's part-1 figures by ray marching (scene_media_figures.cpp): media-absorption and
+// media-emission (one panel, kMediaFigureCamera), media-scattering and media-euler (three panels side
+// by side, kMediaPanelCamera: farther, for the narrower panels).
+constexpr SceneCamera kMediaFigureCamera{{0, 0.45f, 2.7f}, {0, 0.2f, 0}};
+constexpr SceneCamera kMediaPanelCamera{{0, 0.45f, 4.4f}, {0, 0.2f, 0}};
+std::vector<std::string_view> mediaFigureNames();
+std::unique_ptr<Scene> makeMediaFigureScene(std::string_view name, const SceneOptions& options);
 std::unique_ptr<Scene> makeFireScene(const SceneOptions& options);
 std::unique_ptr<Scene> makeSmokeScene(const SceneOptions& options);  // scene_smoke.cpp
 std::unique_ptr<Scene> makeSpritesScene(const SceneOptions& options);

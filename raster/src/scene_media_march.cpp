@@ -29,10 +29,6 @@ public:
         ps_.volume = &volume_;
         ps_.light = mediaSceneLight();
         ps_.background = kMediaBackground;
-        const std::vector<glm::vec2> triangle = {{-1, -1}, {3, -1}, {-1, 3}};
-        triangle_ = VertexBuffer::create(triangle);
-        const InputElementDesc desc[] = {{"POSITION", 0, Format::R32G32_FLOAT, 0, 0}};
-        layout_ = InputLayout(desc);
     }
     std::string_view name() const override { return "media"; }
 
@@ -57,18 +53,13 @@ public:
 
     void render(Context& context, RenderTarget& color, DepthTarget& depth) override {
         beginSceneFrame(context, color, depth);
-        context.setBlendState(BlendState::opaque());
-        context.setPrimitiveTopology(Topology::TriangleList);
-        context.setDepthStencilState(DepthStencilState::disabled());
-        context.setInputLayout(&layout_);
-        context.setVertexBuffer(0, &triangle_);
+        triangle_.bind(context);
         context.draw(vs_, ps_, 3);
     }
 
 private:
     media::MetaballVolume volume_;
-    VertexBuffer triangle_;
-    InputLayout layout_;
+    FullScreenTriangle triangle_;
     shaders::VsMediaRay vs_;
     shaders::PsMediaMarch ps_;
 };

@@ -59,6 +59,21 @@ void beginSceneFrame(Context& context, RenderTarget& color, DepthTarget& depth) 
     context.setCoverageTest(nullptr);
 }
 
+FullScreenTriangle::FullScreenTriangle() {
+    const std::vector<glm::vec2> corners = {{-1, -1}, {3, -1}, {-1, 3}};
+    vertices = VertexBuffer::create(corners);
+    const InputElementDesc desc[] = {{"POSITION", 0, Format::R32G32_FLOAT, 0, 0}};
+    layout = InputLayout(desc);
+}
+
+void FullScreenTriangle::bind(Context& context) const {
+    context.setBlendState(BlendState::opaque());
+    context.setPrimitiveTopology(Topology::TriangleList);
+    context.setDepthStencilState(DepthStencilState::disabled());
+    context.setInputLayout(&layout);
+    context.setVertexBuffer(0, &vertices);
+}
+
 namespace {
 
 // Filled before main by the labs' static registrations, so a function-local static: the order in
@@ -136,6 +151,10 @@ const std::vector<BuiltinScene>& builtinScenes() {
         for (std::string_view name : fogFigureNames()) list.push_back({name, kFogCamera, makeFogFigureChecked});
         list.push_back({"media-closed-form", kMediaCamera, makeMediaChecked});
         list.push_back({"media", kMediaMarchCamera, makeNamed<makeMediaMarchScene>});
+        for (std::string_view name : mediaFigureNames())
+            list.push_back({name, name == "media-absorption" || name == "media-emission" ? kMediaFigureCamera
+                                                                                         : kMediaPanelCamera,
+                            makeMediaFigureScene});
         for (std::string_view name : blendingSceneNames())
             list.push_back({name, kBlendCamera, makeBlendingScene});
         return list;

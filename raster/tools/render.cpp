@@ -49,15 +49,19 @@ const char* blendFigureTitle(const std::string& name) {
     return it == titles.end() ? nullptr : it->second;
 }
 
-// The lecture's fog figures (src/scene_fog.cpp, src/scene_media.cpp); --sigma, --source and --falloff
-// change their medium.
+// The lecture's fog figures (src/scene_fog.cpp, src/scene_media.cpp) and part 1's figures by ray
+// marching (src/scene_media_figures.cpp); --sigma, --source and --falloff change their medium.
 const char* fogFigureTitle(const std::string& name) {
     static const std::map<std::string, const char*> titles = {
         {"fog-constant", "fog figure: constant fog, L0*e^(-sigma*s) + (q/sigma)*(1 - e^(-sigma*s)), the sky at s = inf"},
         {"fog-black", "fog figure: \"zero source term, black fog\" (q = 0): everything fades to black"},
         {"fog-coloured", "fog figure: coloured fog that hides the background (its colour q/sigma)"},
         {"fog-height", "fog figure: exponential height fog, denser below (--falloff B)"},
-        {"media-closed-form", "a box of medium before the world: absorption, emission, both (--sigma, --source)"}};
+        {"media-closed-form", "a box of medium before the world: absorption, emission, both (--sigma, --source)"},
+        {"media-absorption", "ray-marched metaballs that only absorb before a checkered room (--sigma)"},
+        {"media-emission", "ray-marched metaballs that only emit, glowing before a dim room (--source)"},
+        {"media-scattering", "single scattering, back-lit: isotropic | Rayleigh | Henyey-Greenstein g = 0.7"},
+        {"media-euler", "Euler | exponential step at 8 steps | converged; red: L > 1, blue: L < 0"}};
     const auto it = titles.find(name);
     return it == titles.end() ? nullptr : it->second;
 }

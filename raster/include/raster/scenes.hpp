@@ -4,7 +4,8 @@
 // that ../shared/bench/SCENES.md defines to the last constant, `particles` (fire billboards over an
 // occluder) and `fog` (cubes on a ground plane in fog); the lecture's fog figures `fog-constant`,
 // `fog-black`, `fog-coloured`, `fog-height` and part 1's `media-closed-form` (src/scene_fog.cpp,
-// src/scene_media.cpp); the lecture's blend and depth figures,
+// src/scene_media.cpp); part 1's figures by ray marching, `media-absorption`, `media-emission`,
+// `media-scattering`, `media-euler` (src/scene_media_figures.cpp); the lecture's blend and depth figures,
 // `blend-additive`, `blend-depthwrite`, `blend-nodepth`, `blend-unsorted`, `blend-sorted` and
 // `blend-wboit` (src/scene_blending.cpp, docs/BLENDING.md); and the labs' scenes: each lab (labs/<name>/, see raster/lab.hpp) registers `<name>`, its solution
 // (solutions/<name>/) `<name>@solution`.
@@ -60,6 +61,8 @@ struct SceneOptions {
     // RGB (the fog's colour seen to infinity is q/σ); fogFalloff: the height fog's falloff B, per metre,
     // its density e^{−B·y} (the lecture's σ(y) = σ0·e^{b·y} with b = −B). Each component finite and
     // ≥ 0 (fogValueProblem), and q/σ a finite float where σ > 0; else makeScene's Error names it.
+    // media-absorption takes fogSigma as its absorption and media-emission fogSource as its emission,
+    // per unit metaball density.
     std::optional<glm::vec3> fogSigma, fogSource;
     std::optional<float> fogFalloff;
 };

@@ -50,6 +50,19 @@ T exponentialStep(T L, T mu, T q, T ds) {
     return radiance(L, mu, q, ds);
 }
 
+// One step of `rule`: Euler's or the exponential one (midpointExponential is the exponential step,
+// sampled elsewhere: stepSampleFraction).
+template <class T>
+T applyStep(StepRule rule, T L, T mu, T q, T ds) {
+    return rule == StepRule::euler ? eulerStep(L, mu, q, ds) : exponentialStep(L, mu, q, ds);
+}
+
+// Where a step of `rule` samples μ and q, as a fraction of Δs from the step's far end (where the light
+// enters it, marching back to front): 0 for euler and exponential, ½ for midpointExponential.
+inline double stepSampleFraction(StepRule rule) {
+    return rule == StepRule::midpointExponential ? 0.5 : 0.0;
+}
+
 // A medium along one ray: extinction and source at the ray parameter s (metres from the ray's start,
 // the eye). Any type with `double mu(double s) const` and `double q(double s) const` (a functor
 // family the tests and `raster bench error` define) marches.
@@ -67,16 +80,10 @@ template <RayMedium Medium>
 double marchBackToFront(const Medium& medium, double t0, double t1, uint32_t steps, StepRule rule, double L_bg) {
     const double ds = (t1 - t0) / steps;
     double L = L_bg;
+    const double fraction = stepSampleFraction(rule);
     for (uint32_t i = 0; i < steps; ++i) {
-        const double s_far = t1 - i * ds;  // where the light enters this step
-        const double s_mid = t1 - (i + 0.5) * ds;
-        switch (rule) {
-            case StepRule::euler: L = eulerStep(L, medium.mu(s_far), medium.q(s_far), ds); break;
-            case StepRule::exponential: L = exponentialStep(L, medium.mu(s_far), medium.q(s_far), ds); break;
-            case StepRule::midpointExponential:
-                L = exponentialStep(L, medium.mu(s_mid), medium.q(s_mid), ds);
-                break;
-        }
+        const double s = t1 - (i + fraction) * ds;  // the far end (where the light enters) or the midpoint
+        L = applyStep(rule, L, medium.mu(s), medium.q(s), ds);
     }
     return L;
 }
