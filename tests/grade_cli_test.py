@@ -40,6 +40,8 @@ REFUSED = "compile refused: your file includes @REPO@/solutions/billboards/billb
 # tests/grader/root's stable-fog scenes: the default media, sigma 0 in green, a level camera (dy = 0 on the
 # height fog's middle row), thin fog (sigma 1e-7) and a camera high above fog thinning upward, looking down.
 STABLE_FOG = {"small_start", "green_clear", "level_view", "thin_fog", "high_above"}
+# tests/grader/root's ray-marching scenes: the default march, six steps (mu*ds up to about 3), another light.
+RAY_MARCHING = {"small_start", "few_steps", "other_light"}
 NON_FINITE = ["pixel shader: ", "your pixel shader's output is NaN at (", "the scene's parameters:"]
 # case: (lab, scenes lost, verdict of those, words that must be in their output)
 CASES = {
@@ -98,6 +100,13 @@ CASES = {
     "slide_exponent": ("stable-fog", STABLE_FOG, "fail", ["pixel shader: "]),
     "no_sky": ("stable-fog", STABLE_FOG - {"high_above"}, "fail", ["pixel shader: ", "your pixel shader returned (0.000, 0.000, 0.000, 1.000)"]),
     "naive_height": ("stable-fog", {"level_view", "high_above"}, "fail", NON_FINITE + ["--camera "]),
+    # ray-marching: Euler for the exponential step loses the few-step scene and the brighter other light; the phase function's and the
+    # shadow ray's defects every scene.
+    "march_euler": ("ray-marching", {"few_steps", "other_light"}, "fail", ["pixel shader: "]),
+    "hg_slide_exponent": ("ray-marching", RAY_MARCHING, "fail", ["pixel shader: "]),
+    "hg_sign_g": ("ray-marching", RAY_MARCHING, "fail", ["pixel shader: "]),
+    "shadow_ignores_medium": ("ray-marching", RAY_MARCHING, "fail", ["pixel shader: "]),
+    "march_alternative": ("ray-marching", set(), "pass", []),
 }
 # The hostile submissions, graded by the `hostile` case; the first four are stopped at build time,
 # without any isolation too (the compiler's list of what it read; only the lab's file is copied; a
@@ -113,7 +122,7 @@ REPORT_FILES = {"results.json", "junit.xml", "report.html"}
 ABSENT = {"compile_error": ["link failed"], "link_error": ["compile failed"]}
 SCENES = {"billboards": BILLBOARDS, "input-layout": BILLBOARDS, "rasterizer": RASTERIZER,
           "particle-system": BILLBOARDS, "blending": BILLBOARDS, "sprite-methods": SPRITE_METHODS,
-          "stable-fog": STABLE_FOG}
+          "stable-fog": STABLE_FOG, "ray-marching": RAY_MARCHING}
 
 
 def grade(raster, submission, out, extra, cwd):
