@@ -233,21 +233,40 @@ float latticeValue(uint64_t seed, int o, int x, int y, int z) {
     return float(h >> 40) * (1.0f / 16777216.0f);
 }
 
-// Value noise at p (lattice units), smoothstep-interpolated, in [0, 1).
-float valueNoise(uint64_t seed, int o, const glm::vec3& p) {
-    const glm::vec3 f = glm::floor(p);
-    const glm::ivec3 i(f);
-    const glm::vec3 t = p - f;
-    const glm::vec3 s = t * t * (3.0f - 2.0f * t);
-    float c[2][2][2];
-    for (int dz = 0; dz < 2; ++dz)
-        for (int dy = 0; dy < 2; ++dy)
-            for (int dx = 0; dx < 2; ++dx) c[dz][dy][dx] = latticeValue(seed, o, i.x + dx, i.y + dy, i.z + dz);
-    auto lerp = [](float a, float b, float u) { return a + (b - a) * u; };
-    const float y0 = lerp(lerp(c[0][0][0], c[0][0][1], s.x), lerp(c[0][1][0], c[0][1][1], s.x), s.y);
-    const float y1 = lerp(lerp(c[1][0][0], c[1][0][1], s.x), lerp(c[1][1][0], c[1][1][1], s.x), s.y);
-    return lerp(y0, y1, s.z);
-}
+// One octave of value noise: its lattice values tabulated over the lattice points that the grid's
+// samples reach (the hash once per point, not eight times per sample), smoothstep-interpolated.
+class NoiseOctave {
+public:
+    // Lattice coordinates p·frequency + offset for p in [−1, 1].
+    NoiseOctave(uint64_t seed, int octave, float frequency, float offset) {
+        first_ = int(std::floor(offset - frequency)) - 1;
+        size_ = int(std::floor(offset + frequency)) + 2 - first_ + 1;
+        values_.resize(size_t(size_) * size_t(size_) * size_t(size_));
+        size_t at = 0;
+        for (int z = 0; z < size_; ++z)
+            for (int y = 0; y < size_; ++y)
+                for (int x = 0; x < size_; ++x)
+                    values_[at++] = latticeValue(seed, octave, first_ + x, first_ + y, first_ + z);
+    }
+    // Value noise at p (lattice units), in [0, 1).
+    float operator()(const glm::vec3& p) const {
+        const glm::vec3 f = glm::floor(p);
+        const glm::ivec3 i = glm::ivec3(f) - first_;
+        const glm::vec3 t = p - f;
+        const glm::vec3 s = t * t * (3.0f - 2.0f * t);
+        auto at = [&](int dx, int dy, int dz) {
+            return values_[size_t(i.x + dx) + size_t(size_) * (size_t(i.y + dy) + size_t(size_) * size_t(i.z + dz))];
+        };
+        auto lerp = [](float a, float b, float u) { return a + (b - a) * u; };
+        const float y0 = lerp(lerp(at(0, 0, 0), at(1, 0, 0), s.x), lerp(at(0, 1, 0), at(1, 1, 0), s.x), s.y);
+        const float y1 = lerp(lerp(at(0, 0, 1), at(1, 0, 1), s.x), lerp(at(0, 1, 1), at(1, 1, 1), s.x), s.y);
+        return lerp(y0, y1, s.z);
+    }
+
+private:
+    int first_ = 0, size_ = 0;
+    std::vector<float> values_;
+};
 
 }  // namespace
 
@@ -255,25 +274,31 @@ VoxelGrid makeCloudGrid(int n, uint64_t seed) {
     RASTER_REQUIRE(n > 0 && n <= 2048, InvalidArgument, "makeCloudGrid: n must be in [1, 2048]");
     const uint64_t count = uint64_t(n) * uint64_t(n) * uint64_t(n);
     requireMemory(byteCount(count, sizeof(float)), "cloud grid");
-    std::vector<float> v(count);
+    std::vector<float> v(count, 0.0f);
     constexpr int kOctaves = 5;
-    constexpr float kDensity = 8.0f;  // peak extinction, 1/m
+    constexpr float kDensity = 8.0f;   // peak extinction, 1/m
+    constexpr float kErosion = 0.6f;   // how far the noise moves the ellipsoid's edge, in units of r
+    constexpr float kOffset = 17.0f;   // keeps lattice coordinates positive
     const glm::vec3 radii(0.85f, 0.5f, 0.7f);
+    std::vector<NoiseOctave> octaves;
+    for (int o = 0; o < kOctaves; ++o) octaves.emplace_back(seed, o, 4.0f * float(1 << o), kOffset);
     size_t at = 0;
     for (int z = 0; z < n; ++z)
         for (int y = 0; y < n; ++y)
-            for (int x = 0; x < n; ++x) {
+            for (int x = 0; x < n; ++x, ++at) {
                 const glm::vec3 p = (glm::vec3(x, y, z) + 0.5f) / float(n) * 2.0f - 1.0f;  // [−1, 1]³
                 const float r = glm::length(p / radii);
+                // fbm < 1, so the eroded shape below is ≤ 1 − r + kErosion/2: nothing beyond that.
+                if (r >= 1.0f + 0.5f * kErosion) continue;
                 float fbm = 0.0f, amplitude = 0.5f, frequency = 4.0f;
                 for (int o = 0; o < kOctaves; ++o) {
-                    fbm += amplitude * valueNoise(seed, o, p * frequency + 17.0f);
+                    fbm += amplitude * octaves[size_t(o)](p * frequency + kOffset);
                     amplitude *= 0.5f;
                     frequency *= 2.0f;
                 }
                 // The ellipsoid's falloff eroded by the noise: 0 beyond r ≈ 1.
-                const float shape = 1.0f - r + 0.6f * (fbm - 0.5f);
-                v[at++] = kDensity * std::clamp(shape * 3.0f, 0.0f, 1.0f);
+                const float shape = 1.0f - r + kErosion * (fbm - 0.5f);
+                v[at] = kDensity * std::clamp(shape * 3.0f, 0.0f, 1.0f);
             }
     return VoxelGrid(glm::ivec3(n), VoxelBox{glm::vec3(-1.0f), glm::vec3(1.0f)}, std::move(v));
 }
