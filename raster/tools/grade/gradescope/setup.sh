@@ -38,9 +38,10 @@ version_at_least() { printf '%s\n%s\n' "$2" "$1" | sort -V -C; }
 install_packages() {
   # The compiler, CMake and Ninja; python3 runs run_autograder; the libraries build/bin/raster links:
   # GLM and stb (the library), SDL2 (the viewer) and Google Benchmark (raster bench) are part of the one
-  # program, CLI11 its command line, nlohmann's JSON the trace and the grader's files.
+  # program, CLI11 its command line, nlohmann's JSON the trace and the grader's files, NanoVDB the
+  # voxel grids' .nvdb files.
   local packages=(build-essential cmake ninja-build python3 libglm-dev libstb-dev libsdl2-dev
-    libbenchmark-dev libcli11-dev nlohmann-json3-dev)
+    libbenchmark-dev libcli11-dev nlohmann-json3-dev libnanovdb-dev)
   local missing=() p
   for p in "${packages[@]}"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
