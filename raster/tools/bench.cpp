@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "bench_blend.hpp"
+#include "bench_fog_accuracy.hpp"
 #include "bench_soft.hpp"
 #include "bench_timing.hpp"
 #include "commands.hpp"
@@ -35,6 +36,7 @@ struct BenchArgs {
     std::string out;
     bool reference = false, plain = false, noError = false;
     bool turbulence = false;  // particles-sim: add curl-noise turbulence
+    bool quick = false, exhaustive = false;  // fog-accuracy
 };
 
 // An animated scene's time per benchmark frame: one fixed step of the fire's simulation.
@@ -71,6 +73,8 @@ int runBench(const BenchArgs& args) {
     if (args.scene == kParticlesSim) return runParticlesSim(args);
     if (args.scene == kBlendFigures)
         return runBlendFigures(args.options, args.frames, args.threads, args.out);
+    if (args.scene == kFogAccuracyBench)
+        return runFogAccuracyBench({args.out, args.quick, args.exhaustive, args.threads});
     if (args.scene == kSoftParticlesBench)
         return runSoftParticlesBench(args.options, args.frames, args.threads, args.out);
     const SceneOptions& options = args.options;
@@ -120,10 +124,12 @@ Command addBench(CLI::App& app) {
     names.push_back(kParticlesSim);
     names.push_back(kSoftParticlesBench);
     names.push_back(kBlendFigures);
+    names.push_back(kFogAccuracyBench);
     command
         ->add_option(
             "scene", args->scene,
-            "particles, fog, a lab (raster render --list), particles-sim, blend-figures or soft-particles")
+            "particles, fog, a lab (raster render --list), particles-sim, blend-figures, soft-particles or "
+            "fog-accuracy")
         ->check(CLI::IsMember(names))
         ->required();
     addSizeOptions(*command, args->options);
@@ -139,6 +145,8 @@ Command addBench(CLI::App& app) {
                       "every primitive through the plain path (fill/quads.hpp): for stepping in a debugger");
     command->add_flag("--no-error", args->noError, "skip the error against the reference pipeline");
     command->add_flag("--turbulence", args->turbulence, "particles-sim: add curl-noise turbulence");
+    command->add_flag("--quick", args->quick, "fog-accuracy: every other value of each axis of the grid");
+    command->add_flag("--exhaustive", args->exhaustive, "fog-accuracy: psi at every float too (minutes)");
     command->footer(
         "Prints the fast pipeline's error against the reference pipeline (skip with --no-error), then\n"
         "'raster <scene> <W>x<H> ms_per_frame_median=<t> frames=<K>'. An animated scene (fire) starts\n"
@@ -151,7 +159,12 @@ Command addBench(CLI::App& app) {
         "differences' heat maps (<scene>-diff.png) into the folder DIR.\n"
         "soft-particles renders the smoke at full resolution, at 1/2 and 1/4 with and without the edge\n"
         "fix, for --count particles (default 1000 to 100000), and prints a table: the median frame time\n"
-        "and the errors against full resolution (docs/SOFT_PARTICLES.md); --out DIR writes its figures.");
+        "and the errors against full resolution (docs/SOFT_PARTICLES.md); --out DIR writes its figures.\n"
+        "fog-accuracy measures raster's fog and medium closed forms, the lecture's, Unreal's and the\n"
+        "max(sigma, 1e-5) floor over an adversarial grid in float ulps of a long-double reference and\n"
+        "prints the table (docs/ACCURACY.md); --out DIR writes fog-accuracy.csv, the plot's points and\n"
+        "script, and fog-accuracy.png where gnuplot is installed; --exhaustive adds psi at every float\n"
+        "(on --threads threads).");
     return {command, [args] { return runBench(*args); }};
 }
 
