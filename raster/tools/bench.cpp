@@ -4,7 +4,8 @@
 // inside the timing: a frame is then the simulation's step, the upload and the drawing.
 // raster bench particles-sim: times K fixed steps of the particle simulation alone
 // (particle_workload.hpp) and prints the median step time. raster bench blend-figures times the blend
-// figures and compares them (bench_blend.cpp).
+// figures and compares them (bench_blend.cpp). raster bench fog-accuracy measures the fog's closed
+// forms in ulps over an adversarial grid (bench_fog_accuracy.cpp, docs/ACCURACY.md).
 #include <sys/resource.h>
 
 #include <algorithm>
