@@ -4,7 +4,8 @@
 // inside the timing: a frame is then the simulation's step, the upload and the drawing.
 // raster bench particles-sim: times K fixed steps of the particle simulation alone
 // (particle_workload.hpp) and prints the median step time. raster bench blend-figures times the blend
-// figures and compares them (bench_blend.cpp).
+// figures and compares them (bench_blend.cpp). raster bench fog-accuracy measures the fog's closed
+// forms in ulps over an adversarial grid (bench_fog_accuracy.cpp, docs/ACCURACY.md).
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -16,6 +17,7 @@
 
 #include "bench_blend.hpp"
 #include "bench_error.hpp"
+#include "bench_fog_accuracy.hpp"
 #include "bench_soft.hpp"
 #include "bench_timing.hpp"
 #include "commands.hpp"
@@ -37,6 +39,7 @@ struct BenchArgs {
     bool reference = false, plain = false, noError = false;
     bool turbulence = false;  // particles-sim: add curl-noise turbulence
     ErrorBenchArgs error;     // error: --out-dir, --rays, --seed
+    bool quick = false, exhaustive = false;  // fog-accuracy
 };
 
 // An animated scene's time per benchmark frame: one fixed step of the fire's simulation.
@@ -78,6 +81,8 @@ int runBench(const BenchArgs& args) {
     }
     if (args.scene == kBlendFigures)
         return runBlendFigures(args.options, args.frames, args.threads, args.out);
+    if (args.scene == kFogAccuracyBench)
+        return runFogAccuracyBench({args.out, args.quick, args.exhaustive, args.threads});
     if (args.scene == kSoftParticlesBench)
         return runSoftParticlesBench(args.options, args.frames, args.threads, args.out);
     const SceneOptions& options = args.options;
@@ -128,10 +133,12 @@ Command addBench(CLI::App& app) {
     names.push_back(kSoftParticlesBench);
     names.push_back(kBlendFigures);
     names.push_back(kErrorBench);
+    names.push_back(kFogAccuracyBench);
     command
         ->add_option(
             "scene", args->scene,
-            "particles, fog, a lab (raster render --list), particles-sim, blend-figures or soft-particles")
+            "particles, fog, a lab (raster render --list), particles-sim, blend-figures, soft-particles or "
+            "fog-accuracy")
         ->check(CLI::IsMember(names))
         ->required();
     addSizeOptions(*command, args->options);
@@ -149,6 +156,8 @@ Command addBench(CLI::App& app) {
     command->add_flag("--turbulence", args->turbulence, "particles-sim: add curl-noise turbulence");
     command->add_option("--out-dir", args->error.outDir, "error: the folder for error.csv and error.png");
     addWholeNumber(*command, "--rays", args->error.rays, 1, 1'000'000, "error: rays per medium");
+    command->add_flag("--quick", args->quick, "fog-accuracy: every other value of each axis of the grid");
+    command->add_flag("--exhaustive", args->exhaustive, "fog-accuracy: psi at every float too (minutes)");
     command->footer(
         "Prints the fast pipeline's error against the reference pipeline (skip with --no-error), then\n"
         "'raster <scene> <W>x<H> ms_per_frame_median=<t> frames=<K>'. An animated scene (fire) starts\n"
@@ -164,7 +173,12 @@ Command addBench(CLI::App& app) {
         "and the errors against full resolution (docs/SOFT_PARTICLES.md); --out DIR writes its figures.\n"
         "error sweeps the media integrators and accuracy knobs on --rays rays drawn from --seed against a\n"
         "float64 reference, prints the table and the time to reach 1e-2, 1e-3 and 0.5/255, and writes\n"
-        "--out-dir/error.csv and error.png (gnuplot; docs/ACCURACY.md).");
+        "--out-dir/error.csv and error.png (gnuplot; docs/ACCURACY.md).\n"
+        "fog-accuracy measures raster's fog and medium closed forms, the lecture's, Unreal's and the\n"
+        "max(sigma, 1e-5) floor over an adversarial grid in float ulps of a long-double reference and\n"
+        "prints the table (docs/ACCURACY.md); --out DIR writes fog-accuracy.csv, the plot's points and\n"
+        "script, and fog-accuracy.png where gnuplot is installed; --exhaustive adds psi at every float\n"
+        "(on --threads threads).");
     return {command, [args] { return runBench(*args); }};
 }
 
