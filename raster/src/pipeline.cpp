@@ -100,6 +100,33 @@ void Context::clearDepthTarget(DepthTarget& target, float depth) {
     pool_->parallelFor(bands, [&](uint32_t band, unsigned) { target.clearRows(depth, band * kClearBandRows, kClearBandRows); });
 }
 
+detail::DrawHooks Context::drawHooks(uint32_t draw_index, const DrawPlan& plan, const TeachingCoverage* coverage) {
+    detail::DrawHooks h;
+    h.skipped = draw_index >= step_limit_.draws;
+    if (draw_index + 1 == step_limit_.draws) {  // the step's own draw
+        h.primitiveLimit = step_limit_.primitives;
+        h.runsGeometryShader = step_limit_.stage != Stage::VertexShader;
+        h.runsSetup = h.runsGeometryShader && step_limit_.stage != Stage::GeometryShader;
+        h.runsPixels = step_limit_.stage == Stage::OutputMerger;
+    }
+    h.progress = progress_;
+    h.coverage = coverage;
+    if (trace_) {
+        TraceDraw& d = trace_->beginDraw(plan.width, plan.height);
+        d.draw = draw_index;
+        d.topology = topology_;
+        d.blend = blend_;
+        d.depthStencil = depth_stencil_;
+        d.rasterizer = rasterizer_;
+        d.coverageTest = coverage != nullptr;
+        h.trace = trace_;
+        h.record = &d;
+        h.traceGeometry = trace_->options().geometry;
+        h.geometryCap = h.traceGeometry ? trace_->options().maxGeometryRecords : 0;
+    }
+    return h;
+}
+
 Context::DrawPlan Context::plan(int pixel_shader_targets, bool, PrimitiveKind) const {
     validate(blend_);
     validate(depth_stencil_);
@@ -126,7 +153,6 @@ Context::DrawPlan Context::plan(int pixel_shader_targets, bool, PrimitiveKind) c
     p.targets = targets_;
     p.targetCount = target_count_;
     p.viewport = ViewportTransform(viewport_);
-    p.binWholeBoxes = coverage_test_ != nullptr;  // read by teaching draws only
     const Viewport& v = viewport_;
     // Pixels whose centres lie in [topLeft, topLeft + size).
     PixelRect clip{int32_t(std::ceil(v.topLeftX - 0.5f)), int32_t(std::ceil(v.topLeftY - 0.5f)),

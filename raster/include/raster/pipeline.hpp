@@ -37,6 +37,7 @@
 
 #include "raster/buffer.hpp"
 #include "raster/check.hpp"
+#include "raster/draw_hooks.hpp"
 #include "raster/input_layout.hpp"
 #include "raster/render_target.hpp"
 #include "raster/shader.hpp"
@@ -285,34 +286,36 @@ class Context {
     template <VertexShader VS, GeometryShader GS, PixelShader PS>
     void executeDraw(const VS& vs, const GS& gs, const PS& ps, const DrawCall& call);
 
+    // The draw's hooks (draw_hooks.hpp): the step limit, progress and trace resolved for draw
+    // draw_index, its trace record begun with the context's state; coverage: the draw's coverage rule.
+    detail::DrawHooks drawHooks(uint32_t draw_index, const DrawPlan& plan, const TeachingCoverage* coverage);
+
     // GS → clip → setup → bin of the draw's first total_prims primitives, in parallel over chunks of
-    // them; returns how many chunks. setup_stage false: the geometry shader only (a step's stage).
+    // them; returns how many chunks. Without hooks.runsSetup: the geometry shader only (a step's stage).
     template <class GS, class VsOut>
     uint32_t runGeometryStages(
         const GS& gs, const std::vector<VsOut>& vs_out, const AssembledDraw& assembled, uint64_t total_prims,
-        const DrawPlan& p, bool setup_stage, bool trace_geometry,
+        const DrawPlan& p, const detail::DrawHooks& hooks,
         std::vector<detail::Chunk<typename detail::LastGeometryStage<GS, VsOut>::Vertex>>& chunks);
     // The chunks' statistics and trace records into the draw's; a geometry shader's overflow throws.
     template <class GS, class V>
     void gatherChunks(const GS& gs, std::vector<detail::Chunk<V>>& chunks, uint32_t chunk_count,
-                      PipelineStatistics& stats, TraceDraw* trace_draw);
+                      PipelineStatistics& stats, const detail::DrawHooks& hooks);
     // rasterize → PS → OM: the depth and colour policies for the draw's state, then renderTiles.
     template <class PS, class V>
     void rasterizeDraw(const PS& ps, std::vector<detail::Chunk<V>>& chunks, uint32_t chunk_count,
-                       const DrawPlan& p, PipelineStatistics& stats, TraceDraw* trace_draw,
-                       uint32_t draw_index);
+                       const DrawPlan& p, PipelineStatistics& stats, const detail::DrawHooks& hooks);
 
     // A buffer of type T kept from draw to draw, so that a frame's draws reuse their allocations.
     template <class T>
     T& scratch();
 
-    template <class PS, class V, class Real, class Tracer, class Depth, class Color>
+    // The tile loop, for one depth and one colour policy and the tile's hooks (NoHooks or
+    // FragmentHooks, draw_hooks.hpp).
+    template <class PS, class V, class Real, class TileHooks, class Depth, class Color>
     void renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, uint32_t chunk_count,
                      const DrawPlan& plan, const Depth& depth, const Color& color, PipelineStatistics& stats,
-                     const Tracer& tracer);
-    // Starts the trace's record of a draw.
-    template <class VS, class GS, class PS>
-    TraceDraw& beginTraceDraw(const VS& vs, const GS& gs, const PS& ps, uint32_t draw_index, const DrawPlan& plan);
+                     const TileHooks& tile_hooks, const detail::DrawHooks& hooks);
 
     ContextOptions options_;
     std::unique_ptr<ThreadPool> pool_;

@@ -18,6 +18,7 @@
 #include <unordered_map>
 #include <variant>
 
+#include "raster/draw_hooks.hpp"
 #include "raster/fastpath/merge_policy.hpp"
 #include "raster/fastpath/transparency.hpp"
 #include "raster/fill/fill_tile.hpp"
@@ -96,7 +97,7 @@ void Context::executeDraw(const VS& vs, const GS& gs, const PS& ps, const DrawCa
     }
 
     // ---- Validation: every check that can fail runs before anything is written ----
-    const DrawPlan p = plan(detail::pixelShaderTargets(ps), kHasGs, gs_input);
+    DrawPlan p = plan(detail::pixelShaderTargets(ps), kHasGs, gs_input);
     RASTER_REQUIRE(layout_ != nullptr, InvalidState, "draw without an input layout: call setInputLayout");
     const detail::VertexInputDescription vs_input = detail::vertexInputOf(vs);
     const std::vector<InputFetch> program = layout_->bind(vs_input.signature, vs_input.bytes, vs_input.name.c_str());
@@ -119,58 +120,48 @@ void Context::executeDraw(const VS& vs, const GS& gs, const PS& ps, const DrawCa
                       " bytes of " + detail::shaderName(vs) + "'s output)");
     draw_stats_ = {};
     const uint32_t draw_index = draw_count_++;
+    // ---- The draw's hooks: step limit, progress, trace, coverage rule (draw_hooks.hpp) ----
     const RenderProgress::DrawScope progress_scope(progress_);
-    TraceDraw* trace_draw = trace_ ? &beginTraceDraw(vs, gs, ps, draw_index, p) : nullptr;
-    const bool trace_geometry = trace_draw && trace_->options().geometry;
+    const detail::DrawHooks hooks = drawHooks(draw_index, p, detail::coverageRule(ps));
+    if (hooks.record) detail::describeTraceDraw(*hooks.record, vs, gs, ps);
+    p.binWholeBoxes = hooks.coverage != nullptr;
     auto finish = [&](const PipelineStatistics& s) {
         draw_stats_ = s;
         frame_stats_ += s;
         if (draw_log_.size() < kMaxLoggedDraws) draw_log_.push_back(s);
-        if (trace_draw) trace_draw->stats = s;
+        detail::finishTraceDraw(hooks, s);
     };
-    if (draw_index >= step_limit_.draws) {
-        if (trace_draw) trace_draw->skipped = true;
-        return finish({});
-    }
+    if (hooks.skipped) return finish({});
     if (call.instanceCount == 0 || assembled.fetch.empty()) return finish({});
     PipelineStatistics stats;
     stats.iaVertices = assembled.indicesRead * call.instanceCount;
     stats.iaPrimitives = uint64_t(assembled.primitiveCount()) * call.instanceCount;
     stats.vsInvocations = vs_outputs;
 
-    // The last stage this draw runs (StepLimit::stage applies to the step's own draw only).
-    const Stage last_stage = draw_index + 1 == step_limit_.draws ? step_limit_.stage : Stage::OutputMerger;
-
     // ---- VS ----
     auto& vs_out = scratch<std::vector<VsOut>>();
     runVertexShader(vs, program, vertex_buffers_, assembled, call, *pool_, vs_out);
-    if (trace_geometry)
-        detail::traceVertices<VsIn>(*trace_draw, trace_->options().maxGeometryRecords, program,
-                                    vertex_buffers_, assembled, call, vs_out,
-                                    uint32_t(vs_input.bytes / sizeof(float)), detail::vertexShaderFloats(vs));
-    if (last_stage == Stage::VertexShader || (!kHasGs && last_stage == Stage::GeometryShader))
-        return finish(stats);
+    if (hooks.traceGeometry)
+        detail::traceVertices<VsIn>(*hooks.record, hooks.geometryCap, program, vertex_buffers_, assembled, call,
+                                    vs_out, uint32_t(vs_input.bytes / sizeof(float)), detail::vertexShaderFloats(vs));
+    if (!hooks.runsGeometryShader || (!kHasGs && !hooks.runsSetup)) return finish(stats);
 
     // ---- GS → clip → setup → bin, in parallel over chunks of primitives ----
-    const uint64_t total_prims = draw_index + 1 == step_limit_.draws
-                                     ? std::min(stats.iaPrimitives, step_limit_.primitives)
-                                     : stats.iaPrimitives;
+    const uint64_t total_prims = std::min(stats.iaPrimitives, hooks.primitiveLimit);
     auto& chunks = scratch<std::vector<detail::Chunk<Vertex>>>();
-    const uint32_t chunk_count = runGeometryStages(
-        gs, vs_out, assembled, total_prims, p, last_stage != Stage::GeometryShader, trace_geometry, chunks);
-    gatherChunks(gs, chunks, chunk_count, stats, trace_draw);
+    const uint32_t chunk_count = runGeometryStages(gs, vs_out, assembled, total_prims, p, hooks, chunks);
+    gatherChunks(gs, chunks, chunk_count, stats, hooks);
     if constexpr (!kHasGs) stats.gsInvocations = stats.gsPrimitives = 0;
 
     // ---- rasterize → PS → OM, in parallel over screen tiles ----
-    if (!p.clip.empty() && last_stage == Stage::OutputMerger)
-        rasterizeDraw(ps, chunks, chunk_count, p, stats, trace_draw, draw_index);
+    if (!p.clip.empty() && hooks.runsPixels) rasterizeDraw(ps, chunks, chunk_count, p, stats, hooks);
     finish(stats);
 }
 
 template <class GS, class VsOut>
 uint32_t Context::runGeometryStages(
     const GS& gs, const std::vector<VsOut>& vs_out, const AssembledDraw& assembled, uint64_t total_prims,
-    const DrawPlan& p, bool setup_stage, bool trace_geometry,
+    const DrawPlan& p, const detail::DrawHooks& hooks,
     std::vector<detail::Chunk<typename detail::LastGeometryStage<GS, VsOut>::Vertex>>& chunks) {
     constexpr bool kHasGs = !std::is_same_v<GS, NoGeometryShader>;
     using Vertex = typename detail::LastGeometryStage<GS, VsOut>::Vertex;
@@ -183,16 +174,15 @@ uint32_t Context::runGeometryStages(
     if (chunks.size() < chunk_count) chunks.resize(chunk_count);
     const int k_in = int(assembled.kind);
     // The reference pipeline takes no shortcut: billboards stay two triangles there.
-    // Nor does a teaching draw with a lab's coverage test (teaching_pipeline.hpp), whose triangles it
-    // decides.
-    [[maybe_unused]] const bool rectangles =
-        !options_.reference && !options_.plain && rasterizer_.fillMode == FillMode::Solid &&
-        !(std::is_same_v<Vertex, TeachingVertex> && coverage_test_ != nullptr);
+    // Nor does a draw with a lab's coverage rule, whose triangles the lab's test decides.
+    [[maybe_unused]] const bool rectangles = !options_.reference && !options_.plain &&
+                                             rasterizer_.fillMode == FillMode::Solid && !hooks.coverage;
+    const bool setup_stage = hooks.runsSetup;
     pool_->parallelFor(chunk_count, [&](uint32_t c, unsigned) {
         detail::Chunk<Vertex>& chunk = chunks[c];
         chunk.reset(p.grid.count());
-        chunk.tracing = trace_geometry;
-        chunk.traceCap = trace_geometry ? trace_->options().maxGeometryRecords : 0;
+        chunk.tracing = hooks.traceGeometry;
+        chunk.traceCap = hooks.geometryCap;
         const uint64_t begin = c * chunk_size, end = std::min(total_prims, begin + chunk_size);
         [[maybe_unused]] std::unique_ptr<Stream> stream;
         if constexpr (kHasGs) stream = std::make_unique<Stream>();
@@ -219,15 +209,8 @@ uint32_t Context::runGeometryStages(
                     });
                 if (overflow && !chunk.gsOverflow)
                     chunk.gsOverflow = overflow, chunk.gsOverflowPrimitive = uint32_t(prim);
-                if (chunk.tracing) {
-                    for (int i = 0; i < stream->size(); ++i) {
-                        if (chunk.traceGsTotal++ >= chunk.traceCap) continue;
-                        const float* f = asFloats(stream->vertex(i));
-                        chunk.traceGs.push_back(
-                            TraceGsVertex{uint32_t(prim), stream->startsStrip(i),
-                                          std::vector<float>(f, f + detail::geometryShaderFloats(gs))});
-                    }
-                }
+                if (chunk.tracing)
+                    detail::traceGsOutput(chunk, uint32_t(prim), *stream, detail::geometryShaderFloats(gs));
             } else {
                 detail::clipSetupAndBin(assembled.kind, in, uint32_t(prim), p, rasterizer_, chunk);
             }
@@ -238,7 +221,7 @@ uint32_t Context::runGeometryStages(
 
 template <class GS, class V>
 void Context::gatherChunks(const GS& gs, std::vector<detail::Chunk<V>>& chunks, uint32_t chunk_count,
-                           PipelineStatistics& stats, TraceDraw* trace_draw) {
+                           PipelineStatistics& stats, const detail::DrawHooks& hooks) {
     for (uint32_t c = 0; c < chunk_count; ++c) {
         detail::Chunk<V>& chunk = chunks[c];
         RASTER_REQUIRE(chunk.gsOverflow == 0, ShaderError,
@@ -247,36 +230,24 @@ void Context::gatherChunks(const GS& gs, std::vector<detail::Chunk<V>>& chunks, 
                            " for primitive " + std::to_string(chunk.gsOverflowPrimitive) +
                            "; the draw was not rasterised");
         stats += chunk.stats;
-        if (trace_draw && trace_->options().geometry) {
-            const uint32_t cap = trace_->options().maxGeometryRecords;
-            for (auto& g : chunk.traceGs)
-                if (trace_draw->gsVertices.size() < cap) trace_draw->gsVertices.push_back(std::move(g));
-            for (const auto& t : chunk.tracePrimitives)
-                if (trace_draw->primitives.size() < cap) trace_draw->primitives.push_back(t);
-            trace_draw->gsVerticesTotal += chunk.traceGsTotal;
-            trace_draw->primitivesTotal += chunk.tracePrimitivesTotal;
-        }
+        if (hooks.traceGeometry) detail::gatherGeometryRecords(*hooks.record, hooks.geometryCap, chunk);
     }
 }
 
 template <class PS, class V>
 void Context::rasterizeDraw(const PS& ps, std::vector<detail::Chunk<V>>& chunks, uint32_t chunk_count,
-                            const DrawPlan& p, PipelineStatistics& stats, TraceDraw* trace_draw,
-                            uint32_t draw_index) {
+                            const DrawPlan& p, PipelineStatistics& stats, const detail::DrawHooks& hooks) {
     // The policies for the draw's state, chosen once per draw (fastpath/merge_policy.hpp).
     const DepthPolicy depth = chooseDepthPolicy(depth_stencil_, depth_, options_.reference);
     const ColorPolicy color = chooseColorPolicy(blend_, p.targets.data(), p.targetCount, options_.reference);
     if (isOrderIndependent(blend_, p.targetCount)) ++stats.sortsAvoided;
-    // A common state, untraced and not stepped: the tile loop with the state folded in and the
-    // eight-wide fill paths (kSpecialisedPair).
+    // A common state (kSpecialisedPair), untraced, without a coverage rule and not the plain path:
+    // the tile loop with the state folded in, the eight-wide fill paths and no hooks.
     if constexpr (!detail::kDrawsGenericOnly) {
-        if (!trace_draw && !options_.plain && isSpecialised(depth, color)) {
-            std::visit(
-                [&](const auto& d, const auto& c) {
-                    if constexpr (kSpecialisedPair<std::decay_t<decltype(d)>, std::decay_t<decltype(c)>>)
-                        renderTiles<PS, V, float>(ps, chunks, chunk_count, p, d, c, stats, detail::NoTracer{});
-                },
-                depth, color);
+        if (hooks.fragmentHooksIdle() && !options_.plain && isSpecialised(depth, color)) {
+            withSpecialisedPolicies(depth, color, [&](const auto& d, const auto& c) {
+                renderTiles<PS, V, float>(ps, chunks, chunk_count, p, d, c, stats, detail::NoHooks{}, hooks);
+            });
             return;
         }
     }
@@ -286,54 +257,15 @@ void Context::rasterizeDraw(const PS& ps, std::vector<detail::Chunk<V>>& chunks,
     const GenericColorPolicy generic_color = genericColorPolicy(color, blend_, p.targets.data(), p.targetCount);
     if (auto* dynamic = std::get_if<DepthDynamic>(&generic_depth))
         dynamic->late = options_.plain;  // D3D's order
-    detail::FragmentTracer tracer;  // records only a traced draw's fragments, fragment by fragment
-    if (trace_draw) {
-        tracer.active = true;
-        tracer.filter = trace_->options().pixels;
-        tracer.draw = draw_index;
-        tracer.color = p.targetCount > 0 ? p.targets[0] : nullptr;
-        tracer.depth = depth_;
-        tracer.overdraw = trace_->overdrawData();
-        tracer.nonFinite = trace_->nonFiniteData();
-        tracer.width = p.width;
-    }
-    std::visit(
-        [&](const auto& d, const auto& c) {
-            using C = std::decay_t<decltype(c)>;
-            // The reference pipeline computes in double (ColorGeneric<double>).
-            using Real = std::conditional_t<std::is_same_v<C, ColorGeneric<double>>, double, float>;
-            renderTiles<PS, V, Real>(ps, chunks, chunk_count, p, d, c, stats, tracer);
-        },
-        generic_depth, generic_color);
-}
-
-template <class VS, class GS, class PS>
-TraceDraw& Context::beginTraceDraw(const VS& vs, const GS& gs, const PS& ps, uint32_t draw_index,
-                                   const DrawPlan& plan) {
-    using VsOut = VertexShaderOutput<VS>;
-    TraceDraw& d = trace_->beginDraw(plan.width, plan.height);
-    d.draw = draw_index;
-    d.vertexShader = detail::shaderName(vs);
-    d.pixelShader = detail::shaderName(ps);
-    d.topology = topology_;
-    d.blend = blend_;
-    d.depthStencil = depth_stencil_;
-    d.rasterizer = rasterizer_;
-    if constexpr (std::is_same_v<PS, TeachingPixelShader>) d.coverageTest = ps.coverage.test != nullptr;
-    const detail::VertexInputDescription input = detail::vertexInputOf(vs);
-    for (const ShaderInputField& f : input.signature)
-        d.inputFields.push_back(
-            {std::string(f.semanticName) + (f.semanticIndex ? std::to_string(f.semanticIndex) : ""),
-             f.offset / uint32_t(sizeof(float)), f.components});
-    d.vsFloats = detail::vertexShaderFloats(vs);
-    d.vsPosition = uint32_t(offsetof(VsOut, position) / sizeof(float));
-    if constexpr (!std::is_same_v<GS, NoGeometryShader>) {
-        using GsOut = GeometryShaderOutput<GS>;
-        d.geometryShader = detail::shaderName(gs);
-        d.gsFloats = detail::geometryShaderFloats(gs);
-        d.gsPosition = uint32_t(offsetof(GsOut, position) / sizeof(float));
-    }
-    return d;
+    // Records only a traced draw's fragments, fragment by fragment; carries the coverage rule.
+    const detail::FragmentHooks tile_hooks =
+        detail::fragmentHooks(hooks, p.targetCount > 0 ? p.targets[0] : nullptr, depth_, p.width);
+    withGenericPolicies(generic_depth, generic_color, [&](const auto& d, const auto& c) {
+        using C = std::decay_t<decltype(c)>;
+        // The reference pipeline computes in double (ColorGeneric<double>).
+        using Real = std::conditional_t<std::is_same_v<C, ColorGeneric<double>>, double, float>;
+        renderTiles<PS, V, Real>(ps, chunks, chunk_count, p, d, c, stats, tile_hooks, hooks);
+    });
 }
 
 namespace detail {
@@ -350,11 +282,11 @@ struct ReferenceModeGuard {
 // rasterize → PS → OM, screen tile by screen tile in parallel; each tile reads its bins in primitive
 // order, so the image is the same for any thread count. Which fill path a tile's primitives take is
 // fillTile's choice (fill/fill_tile.hpp).
-template <class PS, class V, class Real, class Tracer, class Depth, class Color>
+template <class PS, class V, class Real, class TileHooks, class Depth, class Color>
 void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, uint32_t chunk_count,
                           const DrawPlan& plan, const Depth& depth, const Color& color,
-                          PipelineStatistics& stats, const Tracer& tracer) {
-    using TileFill = Tile<PS, V, Real, Tracer, Depth, Color>;
+                          PipelineStatistics& stats, const TileHooks& tile_hooks, const detail::DrawHooks& hooks) {
+    using TileFill = Tile<PS, V, Real, TileHooks, Depth, Color>;
     typename TileFill::Draw draw{
         ps, depth,         color, chunks, chunk_count, plan.viewport.minDepth, plan.viewport.maxDepth,
         {}, options_.plain};
@@ -365,19 +297,19 @@ void Context::renderTiles(const PS& ps, std::vector<detail::Chunk<V>>& chunks, u
         PipelineStatistics s;
     };
     std::vector<ThreadStatistics> per_thread(pool_->size());
-    [[maybe_unused]] std::vector<std::vector<TraceFragment>> traced_tiles(tracer.active ? plan.grid.count() : 0);
-    RenderProgress* const progress = progress_;
+    [[maybe_unused]] std::vector<std::vector<TraceFragment>> traced_tiles(tile_hooks.active ? plan.grid.count() : 0);
+    RenderProgress* const progress = hooks.progress;
     if (progress) progress->beginTiles(plan.grid.count());
     pool_->parallelFor(plan.grid.count(), [&](uint32_t index, unsigned thread) {
         const detail::ReferenceModeGuard reference(std::is_same_v<Real, double>);
-        TileFill tile(draw, index, plan.grid.tileRect(index), per_thread[thread].s, tracer);
+        TileFill tile(draw, index, plan.grid.tileRect(index), per_thread[thread].s, tile_hooks);
         fillTile(tile);
-        if constexpr (Tracer::kEnabled)
-            if (tracer.active) traced_tiles[index] = std::move(tile.tracer.fragments);
+        if constexpr (TileHooks::kEnabled)
+            if (tile_hooks.active) traced_tiles[index] = std::move(tile.hooks.fragments);
         if (progress) progress->tileFinished();  // per tile, never per pixel: see RenderProgress
     });
     for (const ThreadStatistics& t : per_thread) stats += t.s;
-    for (const auto& fragments : traced_tiles) trace_->addFragments(fragments);
+    for (const auto& fragments : traced_tiles) hooks.trace->addFragments(fragments);
 }
 
 }  // namespace raster

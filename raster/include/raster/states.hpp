@@ -138,6 +138,12 @@ struct RasterizerState {
     int scissorLeft = 0, scissorTop = 0, scissorRight = 0, scissorBottom = 0;
 };
 
+// Inclusive pixel rectangle (the clip rectangle, a primitive's box, a tile, the trace's pixels).
+struct PixelRect {
+    int32_t x0 = 0, y0 = 0, x1 = -1, y1 = -1;
+    bool empty() const { return x1 < x0 || y1 < y0; }
+};
+
 // D3D11_VIEWPORT: maps normalized device coordinates to pixels (x, y, origin top left, y down) and
 // depth [0, 1] to [minDepth, maxDepth]. Everything in pixels except the two depths.
 struct Viewport {

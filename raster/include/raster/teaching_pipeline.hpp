@@ -114,8 +114,9 @@ struct TeachingPixelShader {
     void (*run)(const void* shader, const TeachingVertex& in, TeachingColors& out) = nullptr;
     int targets = 1;  // render targets the lab's shader writes
     TeachingShaderInfo info;
-    // Set by Context::executeTeaching from the context's coverage test; the template pipeline's
-    // shaders have no such member, so their fill paths have no such branch (fill/quads.hpp).
+    // Set by Context::executeTeaching from the context's coverage test; the draw reads it through
+    // detail::coverageRule into its hooks (DrawHooks::coverage, draw_hooks.hpp). The template
+    // pipeline's shaders have none.
     TeachingCoverage coverage;
 
     TeachingColors operator()(const TeachingVertex& in) const {
@@ -307,6 +308,15 @@ int pixelShaderTargets(const PS&) {
     return ColorTraits<PixelShaderOutput<PS>>::kTargets;
 }
 inline int pixelShaderTargets(const TeachingPixelShader& ps) { return ps.targets; }
+// The draw's coverage rule (DrawHooks::coverage): a teaching draw's when the lab set a test; none for
+// every other shader.
+template <class PS>
+const TeachingCoverage* coverageRule(const PS&) {
+    return nullptr;
+}
+inline const TeachingCoverage* coverageRule(const TeachingPixelShader& ps) {
+    return ps.coverage.test ? &ps.coverage : nullptr;
+}
 
 }  // namespace detail
 

@@ -26,8 +26,8 @@
 
 #include <glm/glm.hpp>
 
+#include "raster/draw_hooks.hpp"
 #include "raster/shader.hpp"
-#include "raster/stages/setup.hpp"
 #include "raster/states.hpp"
 #include "raster/statistics.hpp"
 
@@ -60,33 +60,8 @@ struct TraceVertex {
     std::vector<float> output;  // the vertex shader's output struct as floats (position at TraceDraw::vsPosition)
 };
 
-// One vertex appended by the geometry shader.
-struct TraceGsVertex {
-    uint32_t primitive;   // the input primitive (SV_PrimitiveID, instances counted on)
-    bool startsStrip;     // first vertex of a strip (after RestartStrip or the invocation's first)
-    std::vector<float> values;  // the output struct as floats (position at TraceDraw::gsPosition)
-};
-
-enum class PrimitiveFate : uint8_t {
-    Rasterized,     // set up and binned
-    Rectangle,      // a two-triangle billboard drawn as one screen rectangle
-    NonFinite,      // a NaN or Inf position: dropped
-    Outside,        // wholly outside the view volume
-    Culled,         // back- or front-face culling
-    Degenerate,     // zero area after snapping to 16.8 fixed point
-    NoPixels,       // covers no pixel centre in the viewport
-};
-const char* toString(PrimitiveFate fate);
-
-// One primitive leaving the clipper (or rejected before it), in screen space.
-struct TracePrimitive {
-    uint32_t primitive;    // the input primitive it came from
-    PrimitiveKind kind;
-    PrimitiveFate fate;
-    bool clipped;          // made by cutting against a clip plane
-    uint8_t vertexCount;   // 1..4 (4: a rectangle's corners as the strip gave them)
-    glm::vec4 screen[4];   // x, y in pixels, z depth, w the clip-space w; zero for Outside/NonFinite
-};
+// The geometry shader's vertices and each primitive after setup (TraceGsVertex, TracePrimitive,
+// PrimitiveFate) are declared in draw_hooks.hpp: the stages fill them without including this file.
 
 enum class FragmentFate : uint8_t {
     EarlyDepthFailed,  // failed the depth test before the shader: not shaded

@@ -310,12 +310,42 @@ constexpr bool kIsColorFast<ColorFast<Blender>> = true;
 template <class Depth, class Color>
 constexpr bool kSpecialisedPair = !std::is_same_v<Depth, DepthDynamic> && kIsColorFast<Color>;
 
+// A new alternative of either variant needs its case in isSpecialised, withSpecialisedPolicies,
+// genericDepthPolicy and withGenericPolicies below.
+static_assert(std::variant_size_v<DepthPolicy> == 6 && std::variant_size_v<ColorPolicy> == 5);
+
+// Whether the draw's pair is one of kSpecialisedPair's.
 inline bool isSpecialised(const DepthPolicy& depth, const ColorPolicy& color) {
-    return std::visit(
-        [](const auto& d, const auto& c) {
-            return kSpecialisedPair<std::decay_t<decltype(d)>, std::decay_t<decltype(c)>>;
-        },
-        depth, color);
+    return !std::holds_alternative<DepthDynamic>(depth) &&
+           (std::holds_alternative<ColorFast<BlendReplaceRgba8>>(color) ||
+            std::holds_alternative<ColorFast<BlendAdditiveRgba8>>(color));
+}
+
+namespace detail {
+template <class Color, class Run>
+void withSpecialisedDepth(const DepthPolicy& depth, const Color& color, Run& run) {
+    using enum ComparisonFunc;
+    if (const auto* d = std::get_if<DepthOff>(&depth)) return run(*d, color);
+    if (const auto* d = std::get_if<DepthFixed<Less, true>>(&depth)) return run(*d, color);
+    if (const auto* d = std::get_if<DepthFixed<Less, false>>(&depth)) return run(*d, color);
+    if (const auto* d = std::get_if<DepthFixed<LessEqual, true>>(&depth)) return run(*d, color);
+    if (const auto* d = std::get_if<DepthFixed<LessEqual, false>>(&depth)) return run(*d, color);
+}
+}  // namespace detail
+
+// Calls run(d, c) with the draw's depth and colour policies as their own types, for a pair of
+// kSpecialisedPair (isSpecialised(depth, color) holds): the 10 tile loops with the state folded in,
+// written out case by case.
+template <class Run>
+void withSpecialisedPolicies(const DepthPolicy& depth, const ColorPolicy& color, Run&& run) {
+    auto checked = [&](const auto& d, const auto& c) {
+        static_assert(kSpecialisedPair<std::decay_t<decltype(d)>, std::decay_t<decltype(c)>>);
+        run(d, c);
+    };
+    if (const auto* c = std::get_if<ColorFast<BlendReplaceRgba8>>(&color))
+        return detail::withSpecialisedDepth(depth, *c, checked);
+    if (const auto* c = std::get_if<ColorFast<BlendAdditiveRgba8>>(&color))
+        return detail::withSpecialisedDepth(depth, *c, checked);
 }
 
 // The same state through the generic policies: the same bits as the specialised ones
@@ -323,16 +353,37 @@ inline bool isSpecialised(const DepthPolicy& depth, const ColorPolicy& color) {
 using GenericDepthPolicy = std::variant<DepthOff, DepthDynamic>;
 using GenericColorPolicy = std::variant<ColorNone, ColorGeneric<float>, ColorGeneric<double>>;
 
+namespace detail {
+template <ComparisonFunc F, bool Write>
+DepthDynamic dynamicDepth(const DepthFixed<F, Write>& d) {
+    return DepthDynamic{d.depth, d.width, F, Write};
+}
+}  // namespace detail
+
 inline GenericDepthPolicy genericDepthPolicy(const DepthPolicy& policy) {
-    return std::visit(
-        [](const auto& d) -> GenericDepthPolicy {
-            using D = std::decay_t<decltype(d)>;
-            if constexpr (std::is_same_v<D, DepthOff> || std::is_same_v<D, DepthDynamic>)
-                return d;
-            else
-                return DepthDynamic{d.depth, d.width, D::kFunc, D::kWrite};
-        },
-        policy);
+    using enum ComparisonFunc;
+    if (const auto* d = std::get_if<DepthOff>(&policy)) return *d;
+    if (const auto* d = std::get_if<DepthFixed<Less, true>>(&policy)) return detail::dynamicDepth(*d);
+    if (const auto* d = std::get_if<DepthFixed<Less, false>>(&policy)) return detail::dynamicDepth(*d);
+    if (const auto* d = std::get_if<DepthFixed<LessEqual, true>>(&policy)) return detail::dynamicDepth(*d);
+    if (const auto* d = std::get_if<DepthFixed<LessEqual, false>>(&policy)) return detail::dynamicDepth(*d);
+    return std::get<DepthDynamic>(policy);
+}
+
+namespace detail {
+template <class Depth, class Run>
+void withGenericColor(const Depth& depth, const GenericColorPolicy& color, Run& run) {
+    if (const auto* c = std::get_if<ColorNone>(&color)) return run(depth, *c);
+    if (const auto* c = std::get_if<ColorGeneric<float>>(&color)) return run(depth, *c);
+    return run(depth, std::get<ColorGeneric<double>>(color));
+}
+}  // namespace detail
+
+// Calls run(d, c) with the generic policies as their own types: the 6 generic tile loops.
+template <class Run>
+void withGenericPolicies(const GenericDepthPolicy& depth, const GenericColorPolicy& color, Run&& run) {
+    if (const auto* d = std::get_if<DepthOff>(&depth)) return detail::withGenericColor(*d, color, run);
+    return detail::withGenericColor(std::get<DepthDynamic>(depth), color, run);
 }
 
 inline GenericColorPolicy genericColorPolicy(const ColorPolicy& policy, const BlendState& blend,

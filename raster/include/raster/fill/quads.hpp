@@ -15,15 +15,14 @@
 #include <cstdint>
 
 #include "raster/fill/tile.hpp"
-#include "raster/teaching_pipeline.hpp"
 
 namespace raster {
 
 // The triangle a coverage test is given: t's vertices back in the draw's order (setupTriangle swaps
-// vertices 1 and 2 of a counter-clockwise triangle) with their unsnapped window positions.
-template <class V>
-CoverageTriangle coverageTriangle(const TriangleSetup& t, const V* const (&verts)[3],
-                                  const TeachingCoverage& coverage) {
+// vertices 1 and 2 of a counter-clockwise triangle) with their unsnapped window positions. Coverage:
+// the draw's coverage rule (teaching_pipeline.hpp's TeachingCoverage).
+template <class V, class Coverage>
+CoverageTriangle coverageTriangle(const TriangleSetup& t, const V* const (&verts)[3], const Coverage& coverage) {
     const bool clockwise = coverage.frontCounterClockwise ? !t.frontFacing : t.frontFacing;
     const int order[3] = {0, clockwise ? 1 : 2, clockwise ? 2 : 1};
     CoverageTriangle triangle;
@@ -62,14 +61,13 @@ void fillTriangleQuads(T& tile, const TriangleSetup& t, const TriangleInterpolan
                                       q.y + (lane >> 1), z, in);
             });
     };
-    // A teaching draw with the rasterizer lab's coverage test (teaching_pipeline.hpp): the lab decides
-    // which pixel centres are covered. Only the teaching pixel shader has `coverage`: for every other
-    // shader this is compiled out.
-    if constexpr (requires { tile.draw.ps.coverage.test; }) {
-        if (const TeachingCoverage& coverage = tile.draw.ps.coverage; coverage.test) {
-            const CoverageTriangle triangle = coverageTriangle(t, verts, coverage);
+    // A draw with a lab's coverage rule (the tile's hooks, draw_hooks.hpp): the lab's test decides
+    // which pixel centres are covered. The specialised tile loops have no hooks: compiled out there.
+    if constexpr (T::HooksType::kEnabled) {
+        if (const auto* coverage = tile.hooks.coverage) {
+            const CoverageTriangle triangle = coverageTriangle(t, verts, *coverage);
             rasterizeTriangleCovered(
-                t, tile.rect, [&](int32_t x, int32_t y) { return coverage.test(triangle, x, y); }, shade);
+                t, tile.rect, [&](int32_t x, int32_t y) { return coverage->test(triangle, x, y); }, shade);
             return;
         }
     }

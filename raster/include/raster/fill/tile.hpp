@@ -4,10 +4,10 @@
 //
 //  - FillTraits: which paths a (shader, depth policy, colour policy) combination may take, decided at
 //    compile time, once per draw;
-//  - Tile: the tile's rectangle, statistics, shader and trace, and the plain per-fragment steps built
-//    from the stages — early depth test, shading a 2×2 quad, late depth test and blend — that the
-//    in-order path (fill/quads.hpp) is made of and that the eight-wide paths fall back to at a tile's
-//    border.
+//  - Tile: the tile's rectangle, statistics, shader and hooks (draw_hooks.hpp), and the plain
+//    per-fragment steps built from the stages — early depth test, shading a 2×2 quad, late depth
+//    test and blend — that the in-order path (fill/quads.hpp) is made of and that the eight-wide
+//    paths fall back to at a tile's border.
 //
 // The fill paths, one file each: fill/quads.hpp (in order, quad by quad: the plain path, and the
 // only one of lines, points, traced draws and the reference pipeline), fill/triangles_wide.hpp
@@ -82,7 +82,7 @@ inline glm::vec<4, Float8> blockOf(const glm::vec<4, Float8x2>& c, int h) {
 
 // Which fill paths a draw may take, from its types alone. Real is float in the fast pipeline and
 // double in the reference one.
-template <class PS, class Real, class Tracer, class Depth, class Color>
+template <class PS, class Real, class Hooks, class Depth, class Color>
 struct FillTraits {
     // The reference pipeline tests depth after the shader, in D3D's literal order; the fast one
     // before it (the result is the same: shaders here cannot write depth).
@@ -91,7 +91,7 @@ struct FillTraits {
     static constexpr bool kWide = [] {
         if constexpr (WidePixelShader<PS>)
             return std::is_same_v<Real, float> && std::is_same_v<PixelShaderOutput<PS>, glm::vec4> &&
-                   !Tracer::kEnabled;
+                   !Hooks::kEnabled;
         else
             return false;
     }();
@@ -132,26 +132,27 @@ struct DrawFill {
 
 // One tile of one draw while a thread fills it: its rectangle, statistics and trace, and the plain
 // per-fragment steps of the output merger. Made per tile on the thread that fills it.
-template <class PS, class V, class Real, class Tracer, class Depth, class Color>
-class Tile : public FillTraits<PS, Real, Tracer, Depth, Color> {
+template <class PS, class V, class Real, class Hooks, class Depth, class Color>
+class Tile : public FillTraits<PS, Real, Hooks, Depth, Color> {
   public:
-    using Traits = FillTraits<PS, Real, Tracer, Depth, Color>;
+    using Traits = FillTraits<PS, Real, Hooks, Depth, Color>;
     using Draw = DrawFill<PS, V, Depth, Color>;
     using Vertex = V;
+    using HooksType = Hooks;
     using RealType = Real;
     using DepthPolicyType = Depth;
     using ColorPolicyType = Color;
     using Out = PixelShaderOutput<PS>;
 
     Tile(const Draw& draw, uint32_t index, const PixelRect& rect, PipelineStatistics& st,
-         const Tracer& tracer)
+         const Hooks& hooks)
         : draw(draw),
           index(index),
           rect(rect),
           st(st),
           shader(draw.ps),
           wideShader(draw.ps),
-          tracer(tracer),
+          hooks(hooks),
           bounds(draw.depth, rect) {}
 
     const Draw& draw;
@@ -164,12 +165,12 @@ class Tile : public FillTraits<PS, Real, Tracer, Depth, Color> {
     // (and what it computes from them alone) in registers across the blocks, which it cannot do
     // through `ps`, since a store to the targets might, for all it knows, change `ps`.
     const detail::WideShaderCopy<PS> wideShader;
-    Tracer tracer;
-    TileDepthBounds<Depth, !Tracer::kEnabled> bounds;
+    Hooks hooks;  // the trace's recording and a lab's coverage rule, or none (draw_hooks.hpp)
+    TileDepthBounds<Depth, !Hooks::kEnabled> bounds;
 
     // The input primitive whose fragments follow, for the trace.
     void notePrimitive([[maybe_unused]] uint32_t primitive_id) {
-        if constexpr (Tracer::kEnabled) tracer.primitive = primitive_id;
+        if constexpr (Hooks::kEnabled) hooks.primitive = primitive_id;
     }
 
     // A depth no fragment of triangle t lies in front of: interpolated depths stay within the
@@ -191,12 +192,12 @@ class Tile : public FillTraits<PS, Real, Tracer, Depth, Color> {
 
     // The early depth test of one fragment (the fast pipeline: before the shader), counted.
     bool earlyDepthPasses(int32_t x, int32_t y, Real z) {
-        if constexpr (Tracer::kEnabled) tracer.covered(x, y);
+        if constexpr (Hooks::kEnabled) hooks.covered(x, y);
         if constexpr (Traits::kEarlyDepth && Depth::kEnabled) {
             if (!lateDepth() && !draw.depth.test(x, y, float(z))) {
                 ++st.fragmentsEarlyDepthKilled;
-                if constexpr (Tracer::kEnabled)
-                    tracer.close(tracer.open(x, y, float(z), false, glm::vec4(0.0f)),
+                if constexpr (Hooks::kEnabled)
+                    hooks.close(hooks.open(x, y, float(z), false, glm::vec4(0.0f)),
                                  FragmentFate::EarlyDepthFailed);
                 return false;
             }
@@ -228,8 +229,8 @@ class Tile : public FillTraits<PS, Real, Tracer, Depth, Color> {
     }
     // mergeFragment, recorded in the trace when tracing.
     void merge(int32_t x, int32_t y, Real z, const Out& out) {
-        if constexpr (Tracer::kEnabled) {
-            if (!tracer.active) {
+        if constexpr (Hooks::kEnabled) {
+            if (!hooks.active) {
                 mergeFragment(x, y, z, out);
                 return;
             }
@@ -238,8 +239,8 @@ class Tile : public FillTraits<PS, Real, Tracer, Depth, Color> {
                 const auto& colors = colorsOf(out);
                 target0 = detail::ColorTraits<std::decay_t<decltype(colors)>>::color(colors, 0);
             }
-            const size_t record = tracer.open(x, y, float(z), !isDiscarded(out), target0);
-            tracer.close(record, mergeFragment(x, y, z, out));
+            const size_t record = hooks.open(x, y, float(z), !isDiscarded(out), target0);
+            hooks.close(record, mergeFragment(x, y, z, out));
         } else {
             mergeFragment(x, y, z, out);
         }

@@ -6,14 +6,12 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <type_traits>
 #include <vector>
 
+#include "raster/draw_hooks.hpp"
 #include "raster/stages/clipper.hpp"
 #include "raster/stages/setup.hpp"
 #include "raster/statistics.hpp"
-#include "raster/teaching_pipeline.hpp"
-#include "raster/trace.hpp"
 
 namespace raster {
 
@@ -121,7 +119,7 @@ struct alignas(64) Chunk {
     PipelineStatistics stats;
     int gsOverflow = 0;
     uint32_t gsOverflowPrimitive = 0;
-    // Trace records (only while a trace with geometry is set), at most traceCap of each.
+    // Trace records (only while a trace with geometry is set, draw_hooks.hpp), at most traceCap of each.
     bool tracing = false;
     uint32_t traceCap = 0;
     std::vector<TraceGsVertex> traceGs;
@@ -158,8 +156,9 @@ struct PrimitiveSpace {
     TileGrid grid;
     ClipPlanes planes;
     ViewportTransform viewport;
-    // A teaching draw with a lab's coverage test (teaching_pipeline.hpp): each triangle goes to every
-    // tile of its box, since the lab's test, not the library's edges, decides which pixels it covers.
+    // A draw with a lab's coverage rule (DrawHooks::coverage, draw_hooks.hpp): each triangle goes to
+    // every tile of its box, since the lab's test, not the library's edges, decides which pixels it
+    // covers.
     bool binWholeBoxes = false;
 };
 
@@ -257,13 +256,11 @@ void setupAndBinTriangle(const ScreenVertex (&s)[3], const uint32_t (&idx)[3], u
         case SetupResult::Ok: {
             const uint32_t index = uint32_t(chunk.triangles.size());
             chunk.triangles.push_back(t);
-            if constexpr (std::is_same_v<V, TeachingVertex>) {
-                if (plan.binWholeBoxes) {
-                    st.tilesBinned += binBox(t.box, plan.grid, [&](uint32_t tile) {
-                        chunk.bins[tile].push_back(binEntry(PrimitiveKind::Triangle, index));
-                    });
-                    return;
-                }
+            if (plan.binWholeBoxes) {
+                st.tilesBinned += binBox(t.box, plan.grid, [&](uint32_t tile) {
+                    chunk.bins[tile].push_back(binEntry(PrimitiveKind::Triangle, index));
+                });
+                return;
             }
             binTriangle(
                 t, plan.grid,

@@ -26,12 +26,6 @@ constexpr int kSubpixelBits = 8;
 constexpr int32_t kSubpixelOne = 1 << kSubpixelBits;    // 1 pixel in 16.8
 constexpr int32_t kSubpixelHalf = kSubpixelOne / 2;     // a pixel centre's offset
 
-// Inclusive pixel rectangle.
-struct PixelRect {
-    int32_t x0 = 0, y0 = 0, x1 = -1, y1 = -1;
-    bool empty() const { return x1 < x0 || y1 < y0; }
-};
-
 struct ViewportTransform {
     double sx = 0, ox = 0, sy = 0, oy = 0, sz = 0, oz = 0;
     float minDepth = 0, maxDepth = 1;
