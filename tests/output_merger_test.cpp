@@ -1,4 +1,5 @@
 #include "raster/stages/output_merger.hpp"
+#include "raster/fastpath/blend_rgba8.hpp"
 #include "raster/fastpath/merge_policy.hpp"
 
 #include <gtest/gtest.h>

@@ -22,6 +22,7 @@
 #include "raster/simd.hpp"
 #include "raster/stages/setup.hpp"
 #include "raster/stages/output_merger.hpp"
+#include "raster/fastpath/blend_rgba8.hpp"
 
 namespace raster {
 

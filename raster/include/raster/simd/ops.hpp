@@ -136,7 +136,7 @@ template <int N>
     (void)planes;
 }
 
-// ---- The output merger's RGBA8 blenders (output_merger.hpp, BlendReplaceRgba8, BlendAdditiveRgba8)
+// ---- The output merger's RGBA8 blenders (fastpath/blend_rgba8.hpp, BlendReplaceRgba8, BlendAdditiveRgba8)
 // storeUnorm8x4(pixel, rgba): floatToUnorm8 (format.hpp) per channel: saturate (NaN to 0), ·255 + 0.5,
 //   truncated; the four bytes R, G, B, A written at pixel.
 // additiveBlendUnorm8x4(pixel, rgba): the additive blend (SrcAlpha, One) into the four bytes at

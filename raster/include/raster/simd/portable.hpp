@@ -100,7 +100,7 @@ inline void footprintFilter8(const FootprintGrid& grid, const uint8_t* footprint
     }
 }
 
-// BlendAdditiveRgba8 (output_merger.hpp) for eight pixels: per channel the source term
+// BlendAdditiveRgba8 (fastpath/blend_rgba8.hpp) for eight pixels: per channel the source term
 // s·(255·a) + 0.5 truncated, the destination byte added exactly, clamped at 255.
 inline I32x8 additiveBlendRgba8(I32x8 dest, F32x8 r, F32x8 g, F32x8 b, F32x8 alpha) {
     auto saturate = [](F32x8 x) { return min(max(x, splat(0.0f)), splat(1.0f)); };
