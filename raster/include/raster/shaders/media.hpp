@@ -61,7 +61,10 @@ struct PsMediaMarch {
     media::MarchSettings settings;
     glm::vec3 background{0.0f};  // L_bg, radiance behind the medium
 
-    glm::vec4 shade(const glm::vec3& d, float t_near, float t_far) const {
+    // Not inlined: the fill loops are flattened (pipeline_impl.hpp), and the march inlined into each
+    // of their instantiations made scene_media_march.cpp a compile of minutes. A call per pixel is
+    // nothing beside its march.
+    [[gnu::noinline]] glm::vec4 shade(const glm::vec3& d, float t_near, float t_far) const {
         const media::MarchResult r =
             media::marchMetaballs(*volume, light, settings, eye, d, std::max(t_near, 0.0f), t_far);
         const glm::vec3 L = glm::clamp(r.radiance + r.transmittance * background, 0.0f, 1.0f);
