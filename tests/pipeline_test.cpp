@@ -176,6 +176,44 @@ TEST(PipelineDepth, WriteMaskOffKeepsDepth) {
         for (uint32_t x = 0; x < 8; ++x) EXPECT_EQ(f.depth.load(x, y), 0.45f);
 }
 
+// A pixel shader compiled for one state pair only (specialised_states.hpp).
+struct PsOpaqueLessOnly : PsConstant {
+    using SpecialisedStates = raster::SpecialisedStates<Specialise<DepthState::Less, BlendMode::Replace>>;
+};
+
+// A draw whose state the pixel shader names takes the specialised loop; any other state the generic
+// one, with the same bits as a shader compiled for every pair (which takes a specialised loop there).
+TEST(PipelineSpecialisedStates, OtherStatesTakeTheGenericLoopWithTheSameBits) {
+    struct Case {
+        DepthStencilState depth;
+        BlendState blend;
+        bool named;  // the pair is PsOpaqueLessOnly's
+    };
+    const Case cases[] = {{{true, true, ComparisonFunc::Less}, BlendState::opaque(), true},
+                          {DepthStencilState::readOnly(ComparisonFunc::Less), BlendState::additive(), false},
+                          {{true, true, ComparisonFunc::LessEqual}, BlendState::opaque(), false},
+                          {{false, false, ComparisonFunc::Less}, BlendState::opaque(), false}};
+    for (const Case& c : cases) {
+        Fixture one, all;
+        for (Fixture* f : {&one, &all}) {
+            f->depth.clear(0.45f);
+            f->ctx.setDepthStencilState(c.depth);
+            f->ctx.setBlendState(c.blend);
+            f->ctx.resetFrameStatistics();
+        }
+        one.drawColumns(PsOpaqueLessOnly{{glm::vec4(0.25f, 0.5f, 0.75f, 1.0f)}}, 1, 7, 0.3f);
+        all.drawColumns(PsConstant{glm::vec4(0.25f, 0.5f, 0.75f, 1.0f)}, 1, 7, 0.3f);
+        EXPECT_EQ(one.ctx.drawStatistics().drawsSpecialised, c.named ? 1u : 0u);
+        EXPECT_EQ(all.ctx.drawStatistics().drawsSpecialised, 1u) << "every pair is specialised by default";
+        for (uint32_t y = 0; y < 4; ++y)
+            for (uint32_t x = 0; x < 8; ++x) {
+                EXPECT_EQ(one.color.load(x, y), all.color.load(x, y)) << x << "," << y;
+                EXPECT_EQ(one.depth.load(x, y), all.depth.load(x, y)) << x << "," << y;
+            }
+        EXPECT_NE(one.color.load(3, 2), one.color.load(0, 2)) << "the draw wrote something";
+    }
+}
+
 TEST(PipelineDepth, DisabledNeitherTestsNorWrites) {
     Fixture f;
     f.depth.clear(0.45f);

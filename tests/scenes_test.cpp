@@ -207,6 +207,29 @@ TEST(Scenes, ConstantFogSkyIsTheFogColour) {
     EXPECT_EQ(depth.load(80, 0), 1.0f);
 }
 
+// The benchmark scenes' pixel shaders name the states they are drawn with (specialised_states.hpp),
+// so that each file compiles only those tile loops: every draw of theirs must still take a
+// specialised loop, or the scene would silently run the generic one (the same image, slower).
+TEST(Scenes, BenchmarkScenesDrawEveryDrawSpecialised) {
+    for (const std::string name : {"particles", "fog", "fog-constant", "fire", "media"}) {
+        auto scene = makeScene(name, {.width = 160, .height = 90, .count = 200, .cubes = 2});
+        Context ctx;
+        RenderTarget color(160, 90);
+        DepthTarget depth(160, 90);
+        ctx.resetFrameStatistics();
+        scene->render(ctx, color, depth);
+        const auto& log = ctx.drawStatisticsLog();
+        ASSERT_FALSE(log.empty()) << name;
+        for (size_t d = 0; d < log.size(); ++d)
+            EXPECT_EQ(log[d].drawsSpecialised, 1u) << name << ", draw " << d << " took the generic tile loop";
+        // The same draws traced, or on the plain path, read the state per fragment.
+        Context plain(ContextOptions{.plain = true});
+        plain.resetFrameStatistics();
+        scene->render(plain, color, depth);
+        for (const PipelineStatistics& s : plain.drawStatisticsLog()) EXPECT_EQ(s.drawsSpecialised, 0u) << name;
+    }
+}
+
 // ---- The lecture's fog figures and part 1's closed form -----------------------------------------------
 
 RenderTarget renderFigure(const std::string& name, SceneOptions o) {

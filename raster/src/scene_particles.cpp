@@ -56,10 +56,17 @@ ParticleSceneData::ParticleSceneData(const SceneOptions& o)
     layout = InputLayout(desc);
 }
 
+namespace {
+// The occluder's shader, compiled for the one state it is drawn with (specialised_states.hpp).
+struct PsOccluder : shaders::PsConstant {
+    using SpecialisedStates = raster::SpecialisedStates<Specialise<DepthState::Less, BlendMode::Replace>>;
+};
+}  // namespace
+
 void ParticleSceneData::drawOccluder(Context& context) const {
     shaders::VsTransform vs;
     vs.viewProj = viewProj;
-    shaders::PsConstant ps;
+    PsOccluder ps;
     ps.color = occluderColor;
     context.setInputLayout(&layout);
     context.setDepthStencilState({true, true, ComparisonFunc::Less});

@@ -11,7 +11,7 @@ namespace raster {
     X(fragmentsEarlyDepthKilled) X(fragmentsLateDepthKilled) X(fragmentsDiscarded)                     \
     X(fragmentsBlendNoOp) X(fragmentsBlendSaturated) X(fragmentsTransparentSkipped)                    \
     X(fragmentsOverdrawSkipped)                                                                        \
-    X(helperInvocations) X(derivativeReplays) X(sortsAvoided)
+    X(helperInvocations) X(derivativeReplays) X(sortsAvoided) X(drawsSpecialised)
 // clang-format on
 
 PipelineStatistics& PipelineStatistics::operator+=(const PipelineStatistics& o) {

@@ -241,13 +241,17 @@ void Context::rasterizeDraw(const PS& ps, std::vector<detail::Chunk<V>>& chunks,
     const DepthPolicy depth = chooseDepthPolicy(depth_stencil_, depth_, options_.reference);
     const ColorPolicy color = chooseColorPolicy(blend_, p.targets.data(), p.targetCount, options_.reference);
     if (isOrderIndependent(blend_, p.targetCount)) ++stats.sortsAvoided;
-    // A common state (kSpecialisedPair), untraced, without a coverage rule and not the plain path:
-    // the tile loop with the state folded in, the eight-wide fill paths and no hooks.
+    // A state the pixel shader is specialised for (specialised_states.hpp), untraced, without a
+    // coverage rule and not the plain path: the tile loop with the state folded in, the eight-wide
+    // fill paths and no hooks.
     if constexpr (!detail::kDrawsGenericOnly) {
-        if (hooks.fragmentHooksIdle() && !options_.plain && isSpecialised(depth, color)) {
-            withSpecialisedPolicies(depth, color, [&](const auto& d, const auto& c) {
-                renderTiles<PS, V, float>(ps, chunks, chunk_count, p, d, c, stats, detail::NoHooks{}, hooks);
-            });
+        if (hooks.fragmentHooksIdle() && !options_.plain &&
+            withSpecialisedPolicies(typename SpecialisedStatesOf<PS>::type{}, depth, color,
+                                    [&](const auto& d, const auto& c) {
+                                        renderTiles<PS, V, float>(ps, chunks, chunk_count, p, d, c, stats,
+                                                                  detail::NoHooks{}, hooks);
+                                    })) {
+            ++stats.drawsSpecialised;
             return;
         }
     }

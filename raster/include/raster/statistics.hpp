@@ -49,6 +49,10 @@ struct PipelineStatistics {
     uint64_t helperInvocations = 0;       // pixel shader runs for quad helper lanes
     uint64_t derivativeReplays = 0;       // extra pixel shader runs to answer ddx/ddy
     uint64_t sortsAvoided = 0;            // draws whose blend is order-independent: no sort needed
+    uint64_t drawsSpecialised = 0;        // draws whose tile loop had their depth and colour state
+                                          // folded in (specialised_states.hpp); the others read the
+                                          // state per fragment (traced, plain, reference or a state
+                                          // the pixel shader is not specialised for): the same bits
 
     PipelineStatistics& operator+=(const PipelineStatistics& o);
     bool operator==(const PipelineStatistics&) const = default;

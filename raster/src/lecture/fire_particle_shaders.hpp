@@ -17,6 +17,7 @@
 #include "raster/sampler.hpp"
 #include "raster/shader.hpp"
 #include "raster/texture.hpp"
+#include "raster/specialised_states.hpp"
 
 namespace raster::shaders {
 
@@ -73,6 +74,8 @@ struct GsFireParticle {
 
 // Written once for T = float and T = Float8 (and Float8x2): the fast path shades 4×2 pixels a call.
 struct PsFireParticle {
+    // Its draws' state (specialised_states.hpp).
+    using SpecialisedStates = raster::SpecialisedStates<Specialise<DepthState::LessNoWrite, BlendMode::Additive>>;
     using Input = FireCorner;
     const Texture2D* fireTexture = nullptr;
     SamplerState sampler = SamplerState::bilinear(AddressMode::Clamp);

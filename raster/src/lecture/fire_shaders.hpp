@@ -13,6 +13,7 @@
 #include "raster/shader.hpp"
 #include "raster/shaders/billboard.hpp"
 #include "raster/texture.hpp"
+#include "raster/specialised_states.hpp"
 
 namespace raster::shaders {
 
@@ -40,6 +41,8 @@ struct GsBillboard {
 
 // Written once for T = float and T = Float8: the pipeline shades 4×2 pixels per call where it can.
 struct PsFire {
+    // Its draws' state (specialised_states.hpp).
+    using SpecialisedStates = raster::SpecialisedStates<Specialise<DepthState::LessNoWrite, BlendMode::Additive>>;
     using Input = BillboardCorner;
     const Texture2D* billboardTexture = nullptr;
     SamplerState sampler = SamplerState::bilinear(AddressMode::Clamp);

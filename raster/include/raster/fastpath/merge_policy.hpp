@@ -4,11 +4,12 @@
 // depth policy and one colour policy, and instantiates the tile loop for that pair. The lecture's
 // common states get code with the state folded in at compile time and the eight-wide fill paths
 // (kSpecialisedPair: depth off or LESS / LESS_EQUAL with or without write, against blending off or
-// the lecture's additive blend into one RGBA8 target: 10 pairs). Anything else takes the generic
-// policies, which read the state per fragment (genericDepthPolicy, genericColorPolicy): the same
-// bits, 6 pairs, compiled once per shader set and shared with traced draws, the plain path and
-// files that draw through the generic policies only (the teaching pipeline that labs draw through). The reference pipeline always takes
-// the generic policies, in double.
+// the lecture's additive blend into one RGBA8 target: 10 pairs, or those the pixel shader names,
+// specialised_states.hpp). Anything else takes the generic policies, which read the state per
+// fragment (genericDepthPolicy, genericColorPolicy): the same bits, 6 pairs, compiled once per
+// shader set and shared with traced draws, the plain path and files that draw through the generic
+// policies only (the teaching pipeline that labs draw through). The reference pipeline always
+// takes the generic policies, in double.
 #pragma once
 
 #include <cstdint>
@@ -23,6 +24,7 @@
 #include "raster/stages/setup.hpp"
 #include "raster/stages/output_merger.hpp"
 #include "raster/fastpath/blend_rgba8.hpp"
+#include "raster/specialised_states.hpp"
 
 namespace raster {
 
@@ -311,42 +313,57 @@ constexpr bool kIsColorFast<ColorFast<Blender>> = true;
 template <class Depth, class Color>
 constexpr bool kSpecialisedPair = !std::is_same_v<Depth, DepthDynamic> && kIsColorFast<Color>;
 
-// A new alternative of either variant needs its case in isSpecialised, withSpecialisedPolicies,
+// A new alternative of either variant needs its case in specialised_states.hpp (if specialised),
 // genericDepthPolicy and withGenericPolicies below.
 static_assert(std::variant_size_v<DepthPolicy> == 6 && std::variant_size_v<ColorPolicy> == 5);
 
-// Whether the draw's pair is one of kSpecialisedPair's.
-inline bool isSpecialised(const DepthPolicy& depth, const ColorPolicy& color) {
-    return !std::holds_alternative<DepthDynamic>(depth) &&
-           (std::holds_alternative<ColorFast<BlendReplaceRgba8>>(color) ||
-            std::holds_alternative<ColorFast<BlendAdditiveRgba8>>(color));
-}
-
 namespace detail {
-template <class Color, class Run>
-void withSpecialisedDepth(const DepthPolicy& depth, const Color& color, Run& run) {
-    using enum ComparisonFunc;
-    if (const auto* d = std::get_if<DepthOff>(&depth)) return run(*d, color);
-    if (const auto* d = std::get_if<DepthFixed<Less, true>>(&depth)) return run(*d, color);
-    if (const auto* d = std::get_if<DepthFixed<Less, false>>(&depth)) return run(*d, color);
-    if (const auto* d = std::get_if<DepthFixed<LessEqual, true>>(&depth)) return run(*d, color);
-    if (const auto* d = std::get_if<DepthFixed<LessEqual, false>>(&depth)) return run(*d, color);
+template <DepthState D>
+struct DepthPolicyOfT;
+template <>
+struct DepthPolicyOfT<DepthState::Off> {
+    using type = DepthOff;
+};
+template <>
+struct DepthPolicyOfT<DepthState::Less> {
+    using type = DepthFixed<ComparisonFunc::Less, true>;
+};
+template <>
+struct DepthPolicyOfT<DepthState::LessNoWrite> {
+    using type = DepthFixed<ComparisonFunc::Less, false>;
+};
+template <>
+struct DepthPolicyOfT<DepthState::LessEqual> {
+    using type = DepthFixed<ComparisonFunc::LessEqual, true>;
+};
+template <>
+struct DepthPolicyOfT<DepthState::LessEqualNoWrite> {
+    using type = DepthFixed<ComparisonFunc::LessEqual, false>;
+};
+template <BlendMode B>
+using ColorPolicyOf = std::conditional_t<B == BlendMode::Replace, ColorFast<BlendReplaceRgba8>, ColorFast<BlendAdditiveRgba8>>;
+
+// run(d, c) if the draw's policies are the pair's; whether they were.
+template <class Pair, class Run>
+bool runIfPair(const DepthPolicy& depth, const ColorPolicy& color, Run& run) {
+    using D = typename DepthPolicyOfT<Pair::kDepth>::type;
+    using C = ColorPolicyOf<Pair::kBlend>;
+    static_assert(kSpecialisedPair<D, C>);
+    const auto* d = std::get_if<D>(&depth);
+    const auto* c = std::get_if<C>(&color);
+    if (!d || !c) return false;
+    run(*d, *c);
+    return true;
 }
 }  // namespace detail
 
-// Calls run(d, c) with the draw's depth and colour policies as their own types, for a pair of
-// kSpecialisedPair (isSpecialised(depth, color) holds): the 10 tile loops with the state folded in,
-// written out case by case.
-template <class Run>
-void withSpecialisedPolicies(const DepthPolicy& depth, const ColorPolicy& color, Run&& run) {
-    auto checked = [&](const auto& d, const auto& c) {
-        static_assert(kSpecialisedPair<std::decay_t<decltype(d)>, std::decay_t<decltype(c)>>);
-        run(d, c);
-    };
-    if (const auto* c = std::get_if<ColorFast<BlendReplaceRgba8>>(&color))
-        return detail::withSpecialisedDepth(depth, *c, checked);
-    if (const auto* c = std::get_if<ColorFast<BlendAdditiveRgba8>>(&color))
-        return detail::withSpecialisedDepth(depth, *c, checked);
+// Calls run(d, c) with the draw's depth and colour policies as their own types when the pair is
+// one of `States` (specialised_states.hpp: the pixel shader's SpecialisedStates, or all 10 pairs of
+// kSpecialisedPair), and returns true; returns false, without calling run, for any other pair.
+template <class... Pairs, class Run>
+bool withSpecialisedPolicies(SpecialisedStates<Pairs...>, const DepthPolicy& depth, const ColorPolicy& color,
+                             Run&& run) {
+    return (detail::runIfPair<Pairs>(depth, color, run) || ...);
 }
 
 // The same state through the generic policies: the same bits as the specialised ones

@@ -27,6 +27,7 @@
 #include "raster/media/height_fog.hpp"
 #include "raster/shader.hpp"
 #include "raster/simd.hpp"
+#include "raster/specialised_states.hpp"
 
 namespace raster::shaders {
 
@@ -106,6 +107,8 @@ struct VsLit {
 // Diffuse surface, L0 = albedo·(ambient + (1 − ambient)·max(0, n·l)), seen through the fog.
 // Written over its scalar type, so the pipeline runs it eight pixels wide (simd.hpp).
 struct PsFog {
+    // Its draws' state (specialised_states.hpp).
+    using SpecialisedStates = raster::SpecialisedStates<Specialise<DepthState::Less, BlendMode::Replace>>;
     using Input = LitVertex;
     FogMedium fog;
     glm::vec3 eye{0.0f};
@@ -157,6 +160,8 @@ struct VsSky {
 // The background: L0 = 0 seen through the fog to s = ∞ along the pixel's view ray, so only the
 // in-scattered term (q/σ)·(1 − T) remains (the L0·T term is +0 exactly, and is not computed).
 struct PsSky {
+    // Its draws' state (specialised_states.hpp).
+    using SpecialisedStates = raster::SpecialisedStates<Specialise<DepthState::LessEqual, BlendMode::Replace>>;
     using Input = SkyVertex;
     FogMedium fog;
     glm::vec3 eye{0.0f};

@@ -13,6 +13,7 @@
 #include "raster/input_layout.hpp"
 #include "raster/media/metaball_march.hpp"
 #include "raster/shader.hpp"
+#include "raster/specialised_states.hpp"
 
 namespace raster::shaders {
 
@@ -53,6 +54,8 @@ glm::vec<3, T> viewRay(const glm::mat4& inv_view_proj, const glm::vec<2, T>& ndc
 // and their stretches through the box together, then marches them one by one (their work differs:
 // empty space skipped, rays that miss). The same bits as the scalar call, lane by lane.
 struct PsMediaMarch {
+    // Its draws' state (specialised_states.hpp).
+    using SpecialisedStates = raster::SpecialisedStates<Specialise<DepthState::Off, BlendMode::Replace>>;
     using Input = MediaRayVertex;
     glm::mat4 invViewProj{1.0f};
     glm::vec3 eye{0.0f};
