@@ -1,4 +1,4 @@
-// The fire scene (raster/src/scene_fire.cpp) and scene time (raster/scenes.hpp): a frame is a
+// The fire scene (raster/lecture/src/scene_fire.cpp) and scene time (raster/scenes.hpp): a frame is a
 // function of the options and the time, whatever the thread count and however the time was given;
 // the particles only add light to the occluder, and it rises.
 #include <gtest/gtest.h>

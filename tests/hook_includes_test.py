@@ -6,7 +6,7 @@ trace's interface reaches no stage.
     hook_includes_test.py <source-dir>
 
 Follows the project's own #include "raster/..." lines from each header in a folder named `stages`
-(wherever it lies under raster/include) and from trace.hpp, and fails naming the header and the
+(wherever it lies under raster/pipeline/include) and from trace.hpp, and fails naming the header and the
 chain of includes that reaches a forbidden one. Fails too if it finds no stage header or no
 trace.hpp, so that a move cannot make it pass by checking nothing.
 """
@@ -48,7 +48,7 @@ def chain_to(start, forbidden, files):
 
 
 def main(source_dir):
-    files = headers(os.path.join(source_dir, "raster", "include"))
+    files = headers(os.path.join(source_dir, "raster", "pipeline", "include"))
     stages = sorted(h for h in files if "/stages/" in h)
     traces = sorted(h for h in files if os.path.basename(h) == "trace.hpp")
     if not stages or not traces:

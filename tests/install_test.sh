@@ -30,6 +30,7 @@ before=$(stat -c %Y "$library")
 cmake --install "$build" --prefix "$prefix" >"$tmp/install.log" 2>&1 || fail "cmake --install: $(cat "$tmp/install.log")"
 [[ $(stat -c %Y "$library") == "$before" ]] || fail "cmake --install rebuilt $library"
 for file in include/raster/pipeline.hpp include/raster/shaders/basic.hpp include/raster/image_compare.hpp \
+  include/raster/scenes.hpp include/raster/trace_format.hpp lib/libraster_lecture.a lib/libraster_tooling.a \
   lib/libraster_lib.a lib/cmake/raster/raster-config.cmake lib/cmake/raster/raster-config-version.cmake \
   lib/cmake/raster/raster-targets.cmake; do
   [[ -f $prefix/$file ]] || fail "$file was not installed; installed: $(cd "$prefix" && find . -type f | head -20)"
@@ -52,6 +53,13 @@ if grep -q -- "$source_dir/raster" "$tmp/build/compile_commands.json"; then
 fi
 grep -q -- "$prefix/lib/libraster_lib.a" "$tmp/build/CMakeFiles/first_program.dir/link.txt" ||
   fail "the consumer was not linked with the installed library: $(cat "$tmp/build/CMakeFiles/first_program.dir/link.txt")"
+# raster::raster is the pipeline alone: a student's own project links neither the lecture nor the tooling.
+if grep -q -e libraster_lecture -e libraster_tooling "$tmp/build/CMakeFiles/first_program.dir/link.txt"; then
+  fail "raster::raster brought the lecture or the tooling: $(cat "$tmp/build/CMakeFiles/first_program.dir/link.txt")"
+fi
+for target in raster::lecture raster::tooling; do
+  grep -q "add_library($target " "$prefix/lib/cmake/raster/raster-targets.cmake" || fail "$target is not exported"
+done
 
 # Its output: the triangle's centre orange (1, 0.5, 0, 1 → 255 128 0 255), outside it the clear colour.
 "$tmp/build/first_program" >"$tmp/out.txt" 2>&1 || fail "the consumer failed: $(cat "$tmp/out.txt")"

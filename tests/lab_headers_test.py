@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """No lab sees its answers (labs/README.md): every translation unit under labs/ is compiled without the
 folder of the lecture's finished shaders on its include path, and none of the headers it includes
-holds a solution (raster/src/lecture/, solutions/). Nor does it parse the template pipeline
+holds a solution (raster/lecture/src/lecture/, solutions/). Nor does it parse the template pipeline
 (pipeline_impl.hpp, the fill paths, the merge policies): labs draw through the teaching pipeline.
 
     lab_headers_test.py <build-dir> <source-dir>
@@ -22,7 +22,7 @@ import sys
 
 def main(build_dir, source_dir):
     source_dir = os.path.realpath(source_dir)
-    answers = [os.path.join(source_dir, "raster", "src", "lecture"), os.path.join(source_dir, "solutions")]
+    answers = [os.path.join(source_dir, "raster", "lecture", "src", "lecture"), os.path.join(source_dir, "solutions")]
     heavy = [("pipeline_impl.hpp",), ("fill", "fill_tile.hpp"), ("fastpath", "merge_policy.hpp")]
     with open(os.path.join(build_dir, "compile_commands.json")) as f:
         commands = json.load(f)
@@ -65,7 +65,7 @@ def main(build_dir, source_dir):
                 failed = 1
             # A lab draws through the library's teaching pipeline: parsing the template pipeline's
             # implementation would cost the lab loop its seconds and megabytes (labs/README.md).
-            if any(path.endswith(os.path.join("raster", "include", "raster", *p)) for p in heavy):
+            if any(path.endswith(os.path.join("raster", "pipeline", "include", "raster", *p)) for p in heavy):
                 print("lab_headers_test: %s includes %s, the template pipeline (a lab draws through "
                       "raster/teaching_draw.hpp)" % (lab, path))
                 failed = 1

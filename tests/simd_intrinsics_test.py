@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Intrinsics live only in the SIMD layer (docs/DESIGN.md): no C or C++ file of raster, the labs, the
 solutions or the tests names a processor's intrinsic, its vector types or its headers, except
-raster/include/raster/simd/ (base.hpp's list: one header per instruction set), so that a stage
+raster/pipeline/include/raster/simd/ (base.hpp's list: one header per instruction set), so that a stage
 header reads as plain code calling named operations (raster/simd/ops.hpp).
 
     simd_intrinsics_test.py <source-dir>
@@ -21,7 +21,7 @@ PATTERN = re.compile(
 )
 SOURCES = (".hpp", ".h", ".cpp", ".cc", ".c", ".inl")
 ROOTS = ("raster", "labs", "solutions", "tests")
-LAYER = os.path.join("raster", "include", "raster", "simd")
+LAYER = os.path.join("raster", "pipeline", "include", "raster", "simd")
 LAYER_HEADERS = ("base.hpp", "x86_128.hpp", "avx2.hpp", "avx512.hpp", "portable.hpp", "ops.hpp")
 
 

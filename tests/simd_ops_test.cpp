@@ -4,7 +4,7 @@
 // ones this build chose, so that a build for a target without the instruction set gets the same
 // bits. Small on purpose: it includes the layer and the output merger only, so that it also
 // compiles alone, e.g. for plain x86-64:
-//     g++ -std=c++20 -O2 -march=x86-64 -ffp-contract=off -Iraster/include tests/simd_ops_test.cpp -lgtest -lgtest_main
+//     g++ -std=c++20 -O2 -march=x86-64 -ffp-contract=off -Iraster/pipeline/include tests/simd_ops_test.cpp -lgtest -lgtest_main
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -396,7 +396,7 @@ std::string readFile(const std::string& path) {
 }
 
 const std::string kRecordingPath = std::string(RASTER_TEST_DATA_DIR) + "/simd/avx512_kernels.txt";
-const std::string kAvx512Header = std::string(RASTER_TEST_DATA_DIR) + "/../../raster/include/raster/simd/avx512.hpp";
+const std::string kAvx512Header = std::string(RASTER_TEST_DATA_DIR) + "/../../raster/pipeline/include/raster/simd/avx512.hpp";
 
 // A float in [lo, hi) from 24 random bits, the same on every standard library (the <random>
 // distributions are not).
@@ -498,7 +498,7 @@ TEST(SimdOps, Avx512RecordingIsOfTodaysAvx512Header) {
         std::FILE* f = std::fopen(kRecordingPath.c_str(), "wb");
         ASSERT_NE(f, nullptr) << "cannot write " << kRecordingPath;
         std::fprintf(f,
-                     "# The outputs of raster/include/raster/simd/avx512.hpp's pair kernels on the seeded inputs of\n"
+                     "# The outputs of raster/pipeline/include/raster/simd/avx512.hpp's pair kernels on the seeded inputs of\n"
                      "# tests/simd_ops_test.cpp (pairKernelDigests), as FNV-1a 64 digests, and the digest of the header\n"
                      "# they were recorded from. Written by RASTER_RECORD_AVX512=1 simd_ops_test on a machine with AVX-512.\n"
                      "machine %s\nsource %s\nfootprintFilterPair %s\nadditiveBlendRgba8Pair %s\n",
@@ -510,7 +510,7 @@ TEST(SimdOps, Avx512RecordingIsOfTodaysAvx512Header) {
     }
     ASSERT_FALSE(recorded.empty()) << "no recording at " << kRecordingPath;
     EXPECT_EQ(source.hex(), recorded.at("source"))
-        << "raster/include/raster/simd/avx512.hpp changed since its kernels' outputs were recorded (on "
+        << "raster/pipeline/include/raster/simd/avx512.hpp changed since its kernels' outputs were recorded (on "
         << recorded["machine"] << "): record them again on a machine with AVX-512 (RASTER_RECORD_AVX512=1 "
         << "build/bin/simd_ops_test --gtest_filter='*Avx512*'), where the tests also run the kernels themselves";
 }

@@ -19,6 +19,7 @@
 #include "raster/scenes.hpp"
 #include "raster/shaders/basic.hpp"
 #include "raster/teaching_pipeline.hpp"
+#include "raster/trace_format.hpp"
 
 namespace raster {
 namespace {

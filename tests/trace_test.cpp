@@ -2,6 +2,7 @@
 // images bit-identical to untraced ones, records identical for any thread count, geometry records
 // and primitive fates, overdraw and non-finite counts, statistics per draw, and stepping.
 #include "raster/trace.hpp"
+#include "raster/trace_format.hpp"
 
 #include <gtest/gtest.h>
 

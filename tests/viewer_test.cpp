@@ -26,6 +26,7 @@
 #include "commands.hpp"
 #include "raster/image_io.hpp"
 #include "raster/scenes.hpp"
+#include "raster/trace_format.hpp"
 #include "view/camera.hpp"
 #include "view/compare_views.hpp"
 #include "view/overlay.hpp"

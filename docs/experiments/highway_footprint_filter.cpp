@@ -1,10 +1,10 @@
 // Google Highway (Debian's libhwy-dev 1.0.3) tried on the footprint filter's arithmetic: the weights
 // and the four channels of one 4×2 block, written with Highway's operations and by hand (as
-// raster/include/raster/simd/avx2.hpp has it), compared bit for bit on random blocks (α·256 ties
+// raster/pipeline/include/raster/simd/avx2.hpp has it), compared bit for bit on random blocks (α·256 ties
 // among them) and counted in instructions. docs/DESIGN.md, "The SIMD layer", says what followed.
 //
 //     apt-get install libhwy-dev
-//     g++ -std=c++20 -O3 -march=native -ffp-contract=off -Iraster/include \
+//     g++ -std=c++20 -O3 -march=native -ffp-contract=off -Iraster/pipeline/include \
 //         docs/experiments/highway_footprint_filter.cpp -o /tmp/hwy_filter && /tmp/hwy_filter
 //     objdump -d --no-show-raw-insn /tmp/hwy_filter | awk '/<_Z9filterHwy/,/ret/' | grep -c '^ '
 //     objdump -d --no-show-raw-insn /tmp/hwy_filter | awk '/<_Z10filterAvx2/,/ret/' | grep -c '^ '

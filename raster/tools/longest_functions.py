@@ -4,7 +4,7 @@
     raster/tools/longest_functions.py [PATH ...] [--top N]
 
 PATHs are files or directories (searched for .cpp, .hpp, .h, .cc, .cxx, .hh, .inl, .ipp); without
-any, raster/include, raster/src and raster/tools of this checkout. Prints the N (default 10) longest,
+any, the library's rooms (raster/pipeline, raster/lecture, raster/tooling) and raster/tools of this checkout. Prints the N (default 10) longest,
 longest first, one a line: length in lines, file:line of the definition's first line, and its name
 ("Class::method", "lambda in Class::method", "lambda at file scope").
 
@@ -29,7 +29,7 @@ import sys
 from dataclasses import dataclass
 
 SOURCE_SUFFIXES = (".cpp", ".hpp", ".h", ".cc", ".cxx", ".hh", ".inl", ".ipp")
-DEFAULT_DIRS = ("raster/include", "raster/src", "raster/tools")
+DEFAULT_DIRS = ("raster/pipeline", "raster/lecture", "raster/tooling", "raster/tools")
 
 # Keywords after which a parenthesised group opens a statement's block, not a function.
 CONTROL_KEYWORDS = {"if", "for", "while", "switch", "catch", "constexpr", "consteval", "return", "co_return"}
@@ -522,7 +522,7 @@ def main(argv: list[str] | None = None) -> int:
         prog="longest_functions.py",
         description="The longest functions and lambdas of C++ sources, with file:line and length in lines.")
     parser.add_argument("paths", nargs="*", metavar="PATH",
-                        help="files or directories (default: raster/include, raster/src, raster/tools)")
+                        help="files or directories (default: raster/pipeline, raster/lecture, raster/tooling, raster/tools)")
     parser.add_argument("--top", type=positive, default=10, metavar="N", help="how many to list (default 10)")
     args = parser.parse_args(argv)
     paths = args.paths

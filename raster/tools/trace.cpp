@@ -18,6 +18,7 @@
 #include "raster/scenes.hpp"
 #include "raster/shader_context.hpp"
 #include "raster/trace.hpp"
+#include "raster/trace_format.hpp"
 
 namespace raster::tools {
 namespace {

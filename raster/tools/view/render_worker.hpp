@@ -3,7 +3,7 @@
 // running render is let finish (a scene cannot be interrupted mid-draw); its result is newer than
 // what is shown, so it is shown until the latest one arrives.
 //
-// A request may ask for the pipeline trace (raster/include/raster/trace.hpp), which the trace views
+// A request may ask for the pipeline trace (raster/pipeline/include/raster/trace.hpp), which the trace views
 // need; frames nobody asked to trace render untraced, at full speed. It may also ask for the
 // solution (the viewer's --solution): a second scene rendered beside the frame, at the same size,
 // camera and step, which the viewer compares the frame with.

@@ -1,4 +1,4 @@
-// The viewer's trace views (raster/include/raster/trace.hpp), as plain images without SDL, so that
+// The viewer's trace views (raster/pipeline/include/raster/trace.hpp), as plain images without SDL, so that
 // tests can compute what the window must show: the overdraw heat map, the NaN/Inf view, and
 // wireframes of a draw's stages drawn into the image (vertex shader output points, geometry shader
 // output strips, primitives after clipping and setup, the current primitive of a step).

@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "camera.hpp"
+#include "raster/trace_format.hpp"
 
 namespace raster::tools {
 namespace {

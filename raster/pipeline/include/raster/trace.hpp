@@ -152,14 +152,4 @@ private:
     std::vector<uint32_t> overdraw_, non_finite_;
 };
 
-// Text for students and JSON for tools.
-std::string formatPixelHistory(const Trace& trace, int32_t x, int32_t y);
-std::string pixelHistoryJson(const Trace& trace, int32_t x, int32_t y);
-// The draw's rasterizer state in one line: "rasterizer: cull None, fill Solid, front clockwise,
-// scissor off, depth clip on" and, where a lab's coverage test decided its pixels, ", coverage: the
-// lab's test".
-std::string rasterizerSummary(const TraceDraw& draw);
-// A draw's geometry records, at most `limit` of each kind, as text.
-std::string formatDraw(const TraceDraw& draw, size_t limit);
-
 }  // namespace raster

@@ -1,6 +1,6 @@
 // The lecture's fire billboards (lecture 11, part 3): the structs its shaders pass along. The
 // finished shaders (vsBillboard, gsBillboard, psFire) are the billboards lab's answers: they live with
-// the benchmark scenes (raster/src/lecture/fire_shaders.hpp) and the lab's solution, not here.
+// the benchmark scenes (raster/lecture/src/lecture/fire_shaders.hpp) and the lab's solution, not here.
 //
 // HLSL of the slides, for comparison:
 //   VsosBillboard vsBillboard(IaosBillboard input) { output.pos = float4(input.pos, 1); }

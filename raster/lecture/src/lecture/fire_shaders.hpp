@@ -1,5 +1,5 @@
 // The lecture's finished fire shaders (lecture 11, part 3): vsBillboard, gsBillboard, psFire, as the
-// benchmark scenes (raster/src/scenes.cpp), the tools and the tests draw them. They are the
+// benchmark scenes (raster/lecture/src/scenes.cpp), the tools and the tests draw them. They are the
 // billboards lab's answers, so they are not among the library's public headers: the target
 // raster_lecture gives this folder to the library, the tools and the tests, never to labs/
 // (tests/lab_headers_test.py checks that no lab's translation unit includes this file).
