@@ -105,7 +105,10 @@ def parse(text, where):
             open_region.handout.append(decoded + line[len(body):])
             out.append(decoded + line[len(body):])
         elif handout:
-            errors.append(f"{where}:{number}: a `//>` line outside a stand-in (it would be lost)")
+            if not (errors and errors[-1].startswith(f"{where}:{number - 1}: a `//>` line")):
+                errors.append(f"{where}:{number}: a `//>` line outside a stand-in (it would be lost)")
+            else:  # one message for a run of them
+                errors[-1] = errors[-1].replace(f"{where}:{number - 1}: a `//>` line", f"{where}:{number}: a `//>` line")
         elif open_region:
             open_region.answer.append(line)
             solved.append(line)
@@ -140,19 +143,19 @@ def code_of(lines):
 
 
 def expected_numbers(root, lab):
-    """The place numbers the lab's README table names ({n, ...}), and the README's path."""
+    """{n: line} of the place numbers the lab's README table names (the line of its first row), and
+    the README's path: labs/<lab>/README.md, or the lab's section of labs/README.md."""
     own = os.path.join(root, "labs", lab, "README.md")
-    if os.path.isfile(own):
-        path, lines = own, open(own, encoding="utf-8").read().splitlines()
-    else:
-        path = os.path.join(root, "labs", "README.md")
-        lines, inside = [], False
-        for line in open(path, encoding="utf-8").read().splitlines():
-            if line.startswith("## "):
+    path = own if os.path.isfile(own) else os.path.join(root, "labs", "README.md")
+    numbers, inside = {}, path == own
+    with open(path, encoding="utf-8") as f:
+        for number, line in enumerate(f, 1):
+            if path != own and line.startswith("## "):
                 inside = line.split()[1] == lab
-            elif inside:
-                lines.append(line)
-    return {int(m[1]) for m in map(README_PLACE.match, lines) if m}, os.path.relpath(path, root)
+            m = README_PLACE.match(line)
+            if inside and m:
+                numbers.setdefault(int(m[1]), number)
+    return numbers, os.path.relpath(path, root)
 
 
 def check_places(regions, numbers, readme, where):
@@ -184,14 +187,13 @@ def check_places(regions, numbers, readme, where):
     for number, parts in places.items():
         if code_of(sum((p.answer for p in parts), [])) == code_of(sum((p.handout for p in parts), [])):
             errors.append(f"{where}:{parts[0].line}: LAB {number}'s stand-in is its answer (the same code)")
-    if set(places) != numbers:
-        missing, extra = sorted(numbers - set(places)), sorted(set(places) - numbers)
-        errors.append(f"{where}: the places are LAB {', '.join(map(str, sorted(places))) or 'none'}, {readme} "
-                      f"names LAB {', '.join(map(str, sorted(numbers))) or 'none'}"
-                      + (f" (missing here: {', '.join(map(str, missing))})" if missing else "")
-                      + (f" (not in the README: {', '.join(map(str, extra))})" if extra else ""))
-    elif numbers != set(range(1, len(numbers) + 1)):
-        errors.append(f"{where}: the places are not numbered 1 to {len(numbers)}: {sorted(numbers)}")
+    for number in sorted(set(places) - set(numbers)):
+        errors.append(f"{where}:{places[number][0].line}: LAB {number}, which {readme} does not name "
+                      f"(it names LAB {', '.join(map(str, sorted(numbers))) or 'none'})")
+    for number in sorted(set(numbers) - set(places)):
+        errors.append(f"{readme}:{numbers[number]}: LAB {number}, which {where} has no place for")
+    if set(numbers) != set(range(1, len(numbers) + 1)):
+        errors.append(f"{readme}: the places are not numbered 1 to {len(numbers)}: LAB {sorted(numbers)}")
     return errors
 
 
@@ -219,7 +221,12 @@ def generate(root, lab):
     parsed = read_solution(root, lab)
     numbers, readme = expected_numbers(root, lab)
     where = os.path.join("solutions", lab, f"{lab}.cpp")
-    return parsed.handout, parsed.errors + check_places(parsed.regions, numbers, readme, where)
+    errors = parsed.errors + check_places(parsed.regions, numbers, readme, where)
+    for line, text in enumerate(parsed.handout.splitlines(), 1):
+        for n in re.findall(r"\bLAB ([0-9]+)", text):
+            if int(n) not in numbers:
+                errors.append(f"labs/{lab}/{lab}.cpp:{line} (as made): names LAB {n}, which {readme} does not")
+    return parsed.handout, errors
 
 
 def main(argv):
@@ -235,21 +242,30 @@ def main(argv):
     failed = False
     for lab in args.labs or labs_of(args.root):
         handout, errors = generate(args.root, lab)
+        path = os.path.join("labs", lab, f"{lab}.cpp")
         for e in errors:
             print(e)
-        failed |= bool(errors)
-        path = os.path.join("labs", lab, f"{lab}.cpp")
-        with open(os.path.join(args.root, path), encoding="utf-8", newline="") as f:
-            committed = f.read()
+        if errors:
+            print(f"{path}: neither compared nor written: the solution's markers are wrong")
+            failed = True
+            continue
+        committed = None
+        if os.path.isfile(os.path.join(args.root, path)):
+            with open(os.path.join(args.root, path), encoding="utf-8", newline="") as f:
+                committed = f.read()
         if committed == handout:
             continue
-        if args.check or errors:
-            diff = difflib.unified_diff(committed.splitlines(keepends=True), handout.splitlines(keepends=True),
+        if args.check:
+            diff = difflib.unified_diff((committed or "").splitlines(keepends=True), handout.splitlines(keepends=True),
                                         f"{path} (committed)", f"{path} (made from the solution)", n=1)
-            print(f"{path}: differs from what {os.path.basename(__file__)} makes of its solution:")
+            old, new = (committed or "").splitlines(), handout.splitlines()
+            first = next((i for i, (x, y) in enumerate(zip(old, new)) if x != y), min(len(old), len(new))) + 1
+            print(f"{path}:{first}: differs from what {os.path.basename(__file__)} makes of its solution "
+                  f"(run labs/generate.py, or mend the solution):")
             sys.stdout.writelines(list(diff)[:40])
             failed = True
         else:
+            os.makedirs(os.path.dirname(os.path.join(args.root, path)), exist_ok=True)
             with open(os.path.join(args.root, path), "w", encoding="utf-8", newline="") as f:
                 f.write(handout)
             print(f"wrote {path}")
