@@ -35,8 +35,8 @@ import re
 import sys
 
 LABS_LIST = os.path.join("labs", "CMakeLists.txt")
-BEGIN = re.compile(r"^(\s*)// BEGIN (.*?)\s*$")
-END = re.compile(r"^(\s*)// END (.*?)\s*$")
+BEGIN = re.compile(r"^(\s*)// BEGIN\b\s*(.*?)\s*$")
+END = re.compile(r"^(\s*)// END\b\s*(.*?)\s*$")
 STAND_IN = re.compile(r"^\s*// STAND-IN\s*$")
 HANDOUT_LINE = re.compile(r"^(\s*)//>(?: (.*))?$")
 PLACE = re.compile(r"^LAB ([1-9][0-9]*)( \(out of order\))?$")
@@ -60,7 +60,7 @@ def parse(text, where):
     """Parsed(handout, solved, regions, errors) of a solution's text: the handout's text, the
     solution's without the pairs' marker and stand-in lines, the pairs, and the errors, each
     "<where>:<line>: <what>"."""
-    out, solved, regions, errors, open_region = [], [], [], [], None
+    out, solved, regions, errors, open_region, orphans = [], [], [], [], None, None
     for number, line in enumerate(text.splitlines(keepends=True), 1):
         body = line.rstrip("\r\n")
         begin, end, handout = BEGIN.match(body), END.match(body), HANDOUT_LINE.match(body)
@@ -104,11 +104,13 @@ def parse(text, where):
             decoded = handout[1] + handout[2] if handout[2] else ""
             open_region.handout.append(decoded + line[len(body):])
             out.append(decoded + line[len(body):])
-        elif handout:
-            if not (errors and errors[-1].startswith(f"{where}:{number - 1}: a `//>` line")):
-                errors.append(f"{where}:{number}: a `//>` line outside a stand-in (it would be lost)")
-            else:  # one message for a run of them
-                errors[-1] = errors[-1].replace(f"{where}:{number - 1}: a `//>` line", f"{where}:{number}: a `//>` line")
+        elif handout:  # one message for a run of them
+            first = orphans[0] if orphans and orphans[1] == number - 1 else number
+            if first != number:
+                errors.pop()
+            orphans = (first, number)
+            errors.append(f"{where}:{first}: a `//>` line outside a stand-in (it would be lost)" if first == number else
+                          f"{where}:{first}: `//>` lines outside a stand-in, to line {number} (they would be lost)")
         elif open_region:
             open_region.answer.append(line)
             solved.append(line)

@@ -67,13 +67,16 @@ def cases(solution, handout, readme):
          f"{SOLUTION}:{end3}: `END LAB 4` ends LAB 3"),
         ("BEGIN missing", SOLUTION, replace_line(s, "// BEGIN LAB 3", None),
          f"{SOLUTION}:{line_of(s, '// STAND-IN', 4) - 1}: `STAND-IN` outside a BEGIN/END pair"),
+        ("stand-in lines left over", SOLUTION, replace_line(s, "// BEGIN LAB 3", None),
+         f"{SOLUTION}:{line_of(s, '// STAND-IN', 4)}: `//>` lines outside a stand-in, to line {end3 - 2}"),
         ("nested", SOLUTION, replace_line(s, "// BEGIN LAB 3", "// BEGIN LAB 3\n// BEGIN NOTE"),
          f"{SOLUTION}:{begin3 + 1}: `BEGIN NOTE` inside LAB 3"),
         ("unknown marker", SOLUTION, replace_line(s, "// BEGIN LAB 3", "// BEGIN LAB three"),
          f"{SOLUTION}:{begin3}: unknown marker `BEGIN LAB three`"),
         ("no STAND-IN", SOLUTION, replace_line(s, "// STAND-IN", "//", 4),
          f"{SOLUTION}:{end3}: LAB 3, begun on line {begin3}, has no `// STAND-IN` line"),
-        ("stand-in line without //>", SOLUTION, replace_line(s, "//> BlendState fireBlend() {", "BlendState fireBlend() {"),
+        ("stand-in line without //>", SOLUTION,
+         replace_line(s, "//> BlendState fireBlend() {", "BlendState fireBlend() {"),
          f"{SOLUTION}:{line_of(s, '//> BlendState fireBlend() {')}: a line of LAB 3's stand-in"),
         ("a number twice", SOLUTION, s.replace("LAB 4\n", "LAB 2\n"),
          f"{SOLUTION}:{line_of(s, '// BEGIN LAB 4')}: LAB 2 again (its place begins on line {begin2}"),
@@ -84,11 +87,13 @@ def cases(solution, handout, readme):
         ("code in a NOTE", SOLUTION, replace_line(s, "// END NOTE", "//> int x;\n// END NOTE"),
          f"{SOLUTION}:1: the NOTE's two sides differ in code"),
         ("answer as stand-in", SOLUTION,
-         replace_line(s, "//> return {1.0f, 0.5f, 0.1f, 1.0f};", "        //> return billboardTexture->Sample(sampler, in.tex);")
+         replace_line(s, "//> return {1.0f, 0.5f, 0.1f, 1.0f};",
+                      "        //> return billboardTexture->Sample(sampler, in.tex);")
          .replace("        //> (void)in;\n", ""),
          f"{SOLUTION}:{line_of(s, '// BEGIN LAB 2')}: LAB 2's stand-in is its answer"),
         ("handout edited", HANDOUT, None,
-         f"{HANDOUT}:{line_of(handout, 'Fill in the four places')}: differs from what generate.py makes of its solution"),
+         f"{HANDOUT}:{line_of(handout, 'Fill in the four places')}: differs from what generate.py makes of "
+         "its solution"),
         ("handout names a missing place", SOLUTION, replace_line(s, "// END NOTE", "//> // LAB 7 too\n// END NOTE"),
          f"{HANDOUT}:{line_of(handout, 'Look at labs/billboards/README.md') + 1} (as made): names LAB 7"),
     ]
