@@ -2,7 +2,9 @@
 """tests/grader's wrong submissions, made from today's solutions (tests/grader/README.md).
 
 Each submission is a folder tests/grader/<name>/ of patches, <lab>.patch for each lab it holds: a
-unified diff against solutions/<lab>/<lab>.cpp whose text before the diff says what the change is;
+unified diff against solutions/<lab>/<lab>.cpp as a student would hand it in, its answers without
+the stand-ins that labs/generate.py makes the handout of (`labs/generate.py --solved <lab>` prints
+it), whose text before the diff says what the change is;
 and, for a submission that holds symbolic links (which a patch cannot carry), a file `links`: lines
 "<path in the submission> -> <target>", `#` lines comments. A patch's lines and a link's target may
 hold @REPO@, replaced by the source tree's absolute path, and @CLASS@, by the folder of the class
@@ -15,10 +17,11 @@ stops them with an error naming the patch, the hunk and the solution.
     grader_submissions.py check SOURCE_DIR            every patch applies and changes its solution
     grader_submissions.py make SOURCE_DIR NAME DIR    writes DIR/NAME/<lab>/<lab>.cpp, to look at
 
-The patches apply as they are with Debian's `patch -p1` too; this module applies them itself (no
+The patches apply with Debian's `patch` too, to that text; this module applies them itself (no
 package needed) and more strictly: no fuzz, and a hunk whose lines are not at its place must be found
 exactly once elsewhere in the solution.
 """
+import importlib.util
 import os
 import re
 import sys
@@ -141,13 +144,20 @@ def apply(original, patch_text, patch_name, solution_name):
     return result
 
 
+def solved(source, lab):
+    """solutions/<lab>/<lab>.cpp of `source` without its stand-ins (labs/generate.py's `solved`)."""
+    spec = importlib.util.spec_from_file_location("generate_labs", os.path.join(source, "labs", "generate.py"))
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module.solved(source, lab)
+
+
 def build(source, name, lab, patch):
     solution = os.path.join("solutions", lab, f"{lab}.cpp")
     path = os.path.join(source, solution)
     if not os.path.isfile(path):
         raise PatchError(f"{os.path.relpath(patch, source)}: no solution {solution} to apply it to")
-    with open(path, encoding="utf-8") as f:
-        original = f.read()
+    original = solved(source, lab)
     with open(patch, encoding="utf-8") as f:
         return apply(original, f.read(), os.path.relpath(patch, source), solution)
 

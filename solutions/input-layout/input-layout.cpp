@@ -1,3 +1,4 @@
+// BEGIN NOTE
 // Lab: the input layout and the vertex shader (lecture 11, part 3) - THE SOLUTION.
 //
 // The lecture's particles reach the vertex shader through an input layout: one
@@ -5,6 +6,26 @@
 // lecture's `Particle` struct, its format the field's type. This is
 // labs/input-layout/input-layout.cpp with every `LAB n` place filled in; its image is the one the
 // student's is compared with (raster view input-layout, K and J).
+// STAND-IN
+//> // Lab: the input layout and the vertex shader (lecture 11, part 3).
+//> //
+//> // The lecture's particles reach the vertex shader through an input layout: one
+//> // D3D11_INPUT_ELEMENT_DESC per field the shader reads, its offset taken with offsetof from the
+//> // lecture's `Particle` struct, its format the field's type. The vertex shader then takes each
+//> // particle from world space to clip space.
+//> //
+//> // As handed out, this file compiles and runs but draws the fire flat, dim and in the wrong colours.
+//> // Fill in the three places marked `LAB n`, in order; each one changes the picture:
+//> //   LAB 1  the LIFESPAN and AGE elements: their byte offsets in Particle.
+//> //   LAB 2  the COLOR element: its format and its byte offset.
+//> //   LAB 3  the vertex shader's transform from world space to clip space.
+//> //
+//> //   cmake --build build --target raster_tool && build/bin/raster view input-layout
+//> //
+//> // In the viewer, K shows the solution's image and J the difference from it; click a pixel for its
+//> // history. `raster trace input-layout --draw 1 --limit 5` prints what the input assembler fetched
+//> // for the first particles. Look at labs/input-layout/README.md for what each step should show.
+// END NOTE
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
@@ -54,11 +75,28 @@ constexpr auto kPerVertex = InputClassification::PerVertexData;
 const InputElementDesc kParticleElements[] = {
     // The lecture's particleElements[0], written out: the position, three floats at the start.
     {"POSITION", 0, Format::R32G32B32_FLOAT, 0, offsetof(Particle, position), kPerVertex, 0},
+    // BEGIN LAB 1
     // LAB 1: LIFESPAN and AGE, one float each, at their own offsets.
     {"LIFESPAN", 0, Format::R32_FLOAT, 0, offsetof(Particle, lifespan), kPerVertex, 0},
     {"AGE", 0, Format::R32_FLOAT, 0, offsetof(Particle, age), kPerVertex, 0},
+    // STAND-IN
+    //> // LAB 1: each of LIFESPAN and AGE reads one float (R32_FLOAT); give each its byte offset in
+    //> // Particle with offsetof, as POSITION does. Where do they lie, with velocity in between?
+    //> // As handed out both read the first float of the struct (position.x): every particle's
+    //> // age / lifespan is 1, so every particle is drawn as old and dim.
+    //> {"LIFESPAN", 0, Format::R32_FLOAT, 0, 0, kPerVertex, 0},
+    //> {"AGE", 0, Format::R32_FLOAT, 0, 0, kPerVertex, 0},
+    // END LAB 1
+    // BEGIN LAB 2
     // LAB 2: COLOR, four floats (the opacity is the fourth).
     {"COLOR", 0, Format::R32G32B32A32_FLOAT, 0, offsetof(Particle, colour), kPerVertex, 0},
+    // STAND-IN
+    //> // LAB 2: COLOR feeds ParticleIn::colour, a glm::vec4 (rgb and opacity): which format holds four
+    //> // floats, and at which offset does Particle keep them?
+    //> // As handed out it reads three floats at offset 0, the position, and the shader's colour.a is
+    //> // the default 1 that the input assembler fills in for a missing fourth component.
+    //> {"COLOR", 0, Format::R32G32B32_FLOAT, 0, 0, kPerVertex, 0},
+    // END LAB 2
 };
 
 // vsParticle: each particle is one point, drawn one pixel large.
@@ -66,8 +104,15 @@ struct VsParticle {
     glm::mat4 viewProj{1.0f};
 
     ParticleVertex operator()(const ParticleIn& in) const {
+        // BEGIN LAB 3
         // LAB 3: world space to clip space (a position is a point: w = 1).
         const glm::vec4 clip = viewProj * glm::vec4(in.position, 1.0f);
+        // STAND-IN
+        //> // LAB 3: take the position from world space to clip space with viewProj (a position is a
+        //> // point: w = 1). As handed out it is passed on untransformed: world x and y are stretched
+        //> // over the screen, and the particles with world z < 0 or y < -1 are clipped.
+        //> const glm::vec4 clip = glm::vec4(in.position, 1.0f);
+        // END LAB 3
         // Normalized age t in [0, 1] (a lifespan <= 0 counts as dead); a particle dims to half its
         // colour, times its opacity, over its life.
         const float t = in.lifespan > 0.0f ? std::clamp(in.age / in.lifespan, 0.0f, 1.0f) : 1.0f;

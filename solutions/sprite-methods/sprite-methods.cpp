@@ -1,3 +1,4 @@
+// BEGIN NOTE
 // Lab: sprites three ways and a billboard about an axis (lecture 11, part 3) - THE SOLUTION.
 //
 // Rows of camera-facing sprites floating over a meadow with firs: (a) classic transforms (red),
@@ -7,6 +8,30 @@
 // firs are billboards that turn about the vertical only. Everything is alpha tested. This is
 // labs/sprite-methods/sprite-methods.cpp with every `LAB n` place filled in; its image is the one the
 // student's is compared with (raster view sprite-methods, K and J).
+// STAND-IN
+//> // Lab: sprites three ways and a billboard about an axis (lecture 11, part 3).
+//> //
+//> // Rows of camera-facing sprites floating over a meadow with firs: (a) classic transforms (red),
+//> // (b) the sprite's own transform (green), (c) opened after projection by the geometry shader (blue),
+//> // and a fourth row where your three methods draw the same sprites into one colour channel each
+//> // (a red, b green, c blue): grey targets where they agree, coloured fringes where one is off. The
+//> // firs are billboards that turn about the vertical only. Everything is alpha tested.
+//> //
+//> // As handed out, this file compiles and runs but draws the sprites lying flat or not at all, the
+//> // firs turned away and every quad's transparent corners black. Fill in the five places marked
+//> // `LAB n`, in order; each one changes the picture:
+//> //   LAB 1  (a): the rotation that turns the sprite's quad to face the camera (classic transforms).
+//> //   LAB 2  (b): the corner's offset, added to the centre in camera space.
+//> //   LAB 3  (c): the geometry shader's four corners, offset in clip space.
+//> //   LAB 4  the firs' right vector: turn about the vertical axis to face the eye.
+//> //   LAB 5  the alpha test: discard the texels that are not opaque enough.
+//> //
+//> //   cmake --build build --target raster_tool && build/bin/raster view sprite-methods
+//> //
+//> // In the viewer, Space plays and pauses the time ('.' and ',' step it), K shows the solution's image
+//> // and J the difference from it; click a pixel for its history. Look at labs/sprite-methods/README.md
+//> // for what each step should show.
+// END NOTE
 #include <cmath>
 #include <cstdint>
 #include <glm/gtc/matrix_transform.hpp>
@@ -77,6 +102,12 @@ glm::vec2 spriteTexCoord(glm::vec2 corner) {
 
 // ---- (a) classic transforms ------------------------------------------------------------------------
 
+// BEGIN LAB 1
+// STAND-IN
+//> // The columns are where the quad's x, y and z go: x stays, y to −z, z (its normal) to +y.
+//> const glm::mat3 kLyingFlat(glm::vec3(1, 0, 0), glm::vec3(0, 0, -1), glm::vec3(0, 1, 0));
+//>
+// END LAB 1
 // The sprite's model is a quad in its plane z = 0, facing +z. Its model matrix turns that plane to
 // the camera's and moves it to the centre; then the usual view and projection (viewProj = P·V).
 struct VsSpriteClassic {
@@ -84,10 +115,18 @@ struct VsSpriteClassic {
     glm::mat4 viewProj{1.0f};  // P·V
 
     Corner operator()(const SpriteCornerIn& in) const {
+        // BEGIN LAB 1
         // LAB 1: V's rotation R turns the world to the camera; the quad must be turned by R's inverse
         // so that V undoes it: R⁻¹ = Rᵀ for a rotation (the slide's "inverse transpose" is (R⁻¹)ᵀ = R,
         // which would turn the quad twice).
         const glm::mat3 rotation = glm::transpose(glm::mat3(view));
+        // STAND-IN
+        //> // LAB 1: turn the quad so that it faces the camera. The view matrix's upper 3×3, R, turns
+        //> // the world to the camera; which rotation of the quad does V then undo? (The slide says "the
+        //> // inverse transpose of the view rotation": work out what that is for a rotation before you
+        //> // trust it.) As handed out the quad is turned to lie flat, facing up: seen from the side.
+        //> const glm::mat3 rotation = kLyingFlat;
+        // END LAB 1
         glm::mat4 model(rotation);
         model[3] = glm::vec4(in.centre, 1.0f);
         const glm::vec4 local(in.size * in.corner.x, in.size * in.corner.y, 0.0f, 1.0f);
@@ -102,9 +141,15 @@ struct VsSpriteOwn {
 
     Corner operator()(const SpriteCornerIn& in) const {
         glm::vec4 corner = view * glm::vec4(in.centre, 1.0f);  // the centre in camera space
+        // BEGIN LAB 2
         // LAB 2: add the corner's offset in camera space, where x is the screen's right and y its up.
         corner.x += in.size * in.corner.x;
         corner.y += in.size * in.corner.y;
+        // STAND-IN
+        //> // LAB 2: add the corner's offset, (±size, ±size) from in.size and in.corner, in camera space,
+        //> // where x is the screen's right and y its up. As handed out nothing is added: the six corners
+        //> // sit on the centre, two triangles of no area, and the row is empty.
+        // END LAB 2
         return {proj * corner, spriteTexCoord(in.corner), in.tint};
     }
 };
@@ -123,6 +168,7 @@ struct GsSprite {
     void operator()(const Point<SpritePoint>& in, TriangleStream<Corner, 4>& stream) const {
         const SpritePoint& p = in[0];
         const glm::vec4 c = viewProj * p.position;
+        // BEGIN LAB 3
         // LAB 3: the offset (±size, ±size, 0, 0) in camera space is (±size·P[0][0], ±size·P[1][1], 0, 0)
         // in clip space; added before the division by w, it shrinks with distance as the quad does.
         const float bx = p.size * proj[0][0], by = p.size * proj[1][1];
@@ -130,6 +176,17 @@ struct GsSprite {
         stream.Append({c + glm::vec4(bx, -by, 0, 0), {1, 1}, p.tint});
         stream.Append({c + glm::vec4(-bx, by, 0, 0), {0, 0}, p.tint});
         stream.Append({c + glm::vec4(-bx, -by, 0, 0), {0, 1}, p.tint});
+        // STAND-IN
+        //> // LAB 3: open the sprite after the projection: emit the corners c + (±bx, ±by, 0, 0) as a
+        //> // triangle strip in the lecture's order, (+x, +y) uv (1, 0), (+x, −y) uv (1, 1), (−x, +y)
+        //> // uv (0, 0), (−x, −y) uv (0, 1). What must bx and by be for the quad to be (b)'s, p.size world
+        //> // units wide in camera space? (What does P do to a camera-space offset (x, y, 0, 0)?)
+        //> // As handed out the four corners sit on the centre: nothing is drawn.
+        //> stream.Append({c, {1, 0}, p.tint});
+        //> stream.Append({c, {1, 1}, p.tint});
+        //> stream.Append({c, {0, 0}, p.tint});
+        //> stream.Append({c, {0, 1}, p.tint});
+        // END LAB 3
     }
 };
 
@@ -141,12 +198,20 @@ struct VsTree {
     glm::vec3 axis{0, 1, 0};  // unit, world space: the trunk's direction
 
     Corner operator()(const TreeCornerIn& in) const {
+        // BEGIN LAB 4
         // LAB 4: the quad keeps the axis and turns about it to face the eye: its right vector is
         // normal to the axis and to the direction to the eye. (From a point on the axis line any
         // right vector normal to the axis will do.)
         glm::vec3 side = glm::cross(axis, eye - in.base);
         if (!(glm::length(side) > 1e-12f)) side = glm::cross(axis, glm::vec3(1, 0, 0));
         const glm::vec3 right = glm::normalize(side);
+        // STAND-IN
+        //> // LAB 4: the quad keeps the axis (the trunk stays upright) and turns about it to face the
+        //> // eye: its right vector, of unit length, must be normal to the axis and to the direction
+        //> // from the foot to the eye. (And when the eye is on the axis line?) As handed out it is the
+        //> // world's z axis: seen from the front, each fir is edge-on, a thin sliver.
+        //> const glm::vec3 right(0.0f, 0.0f, 1.0f);
+        // END LAB 4
         const glm::vec3 world =
             in.base + (in.corner.x * in.extent.x) * right + (in.corner.y * in.extent.y) * axis;
         return {viewProj * glm::vec4(world, 1.0f),
@@ -164,12 +229,21 @@ struct VsGround {
 
 // ---- The pixel shader: the alpha test -----------------------------------------------------------
 
+// BEGIN LAB 5
 // LAB 5: the texel times the tint, but only where it is opaque enough: discard (std::nullopt) where
 // its alpha times the tint's is below one half, and write the rest opaque (alpha 1).
 std::optional<glm::vec4> alphaTested(glm::vec4 texel, glm::vec4 tint) {
     if (texel.w * tint.w < 0.5f) return std::nullopt;
     return glm::vec4(texel.x * tint.x, texel.y * tint.y, texel.z * tint.z, 1.0f);
 }
+// STAND-IN
+//> // LAB 5: the alpha test. Return std::nullopt (the fragment is discarded: no colour, no depth) where the
+//> // texel's alpha times the tint's is below one half; write the rest opaque (alpha 1), as now. As handed
+//> // out nothing is discarded: each quad's transparent texels are drawn black and hide what is behind.
+//> std::optional<glm::vec4> alphaTested(glm::vec4 texel, glm::vec4 tint) {
+    //> return glm::vec4(texel.x * tint.x, texel.y * tint.y, texel.z * tint.z, 1.0f);
+//> }
+// END LAB 5
 
 struct PsTextured {
     using Input = Corner;

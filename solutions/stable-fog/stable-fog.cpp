@@ -1,3 +1,4 @@
+// BEGIN NOTE
 // Lab: fog in the pixel shader, in stable form (lecture 11, part 2) - THE SOLUTION.
 //
 // The lecture's four fog figures as four panels of one image, each over the same world (a checkered
@@ -5,6 +6,30 @@
 // term, black fog", coloured fog that hides the background, and exponential height fog. This is
 // labs/stable-fog/stable-fog.cpp with every `LAB n` place filled in; its image is the one the student's
 // is compared with (raster view stable-fog, K and J).
+// STAND-IN
+//> // Lab: fog in the pixel shader, in stable form (lecture 11, part 2).
+//> //
+//> // The lecture's four fog figures as four panels of one image, each over the same world (a checkered
+//> // ground and a lattice of coloured cubes) with the sky infinitely far away: top left constant fog, top
+//> // right "zero source term, black fog", bottom left coloured fog that hides the background, bottom
+//> // right exponential height fog. Along a view ray through a medium of extinction σ and source term q
+//> // (dL/ds = −σ·L + q), a surface of radiance L0 at distance s reaches the eye as
+//> //   L(s) = L0·e^{−σ·s} + (q/σ)·(1 − e^{−σ·s})
+//> //
+//> // As handed out, this file compiles and runs, but there is no fog and no sky: four panels of the
+//> // world, clear, under a black sky. Fill in the four places marked `LAB n`, in order; each puts one
+//> // panel right (labs/stable-fog/README.md has the table):
+//> //   LAB 1  transmittance (black fog)     LAB 2  inScattered (constant fog)
+//> //   LAB 3  PsSky, the sky at s = ∞       LAB 4  opticalDepth (height fog)
+//> // Write them so that they stay right for every medium the grader may try: a channel with σ = 0, very
+//> // thin fog (σ = 1e-7), a camera looking exactly level, a camera high above thinning fog looking down.
+//> // A NaN or an infinity on the way shows as a black or white pixel, and the grader names it.
+//> //
+//> //   cmake --build build-lab --target raster_tool && build-lab/bin/raster view stable-fog
+//> //   build-lab/bin/raster render stable-fog --out-dir out --sigma 0.05,0,0.07   (try other media)
+//> //
+//> // In the viewer, K shows the solution's image and J the difference; click a pixel for its history.
+// END NOTE
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -33,13 +58,25 @@ struct Medium {
 // tau is the optical depth per unit sigma: the distance s for constant fog, τ(s) for height fog; it
 // may be +infinity (the sky).
 
+// BEGIN LAB 1
 // LAB 1: the transmittance e^{−σ·τ}, per channel. σ = 0 transmits everything, even to τ = ∞.
 glm::vec3 transmittance(glm::vec3 sigma, float tau) {
     glm::vec3 t;
     for (int c = 0; c < 3; ++c) t[c] = sigma[c] == 0.0f ? 1.0f : std::exp(-(sigma[c] * tau));
     return t;
 }
+// STAND-IN
+//> // LAB 1: black fog — "zero source term" (q = 0): the medium only takes light away. Return the share
+//> // of L0 that reaches the eye over optical depth tau, e^{−σ·τ}, per channel. What must it be for a
+//> // channel with σ = 0, even when tau = ∞ (what is 0·∞ in floating point)?
+//> // As handed out everything is transmitted: no fog at all. The top right panel is black fog.
+//> glm::vec3 transmittance(glm::vec3 sigma, float tau) {
+    //> (void)sigma, (void)tau;
+    //> return glm::vec3(1.0f);
+//> }
+// END LAB 1
 
+// BEGIN LAB 2
 // LAB 2: the light the medium adds over τ, (q/σ)·(1 − e^{−σ·τ}), per channel, stable: 1 − e^{−x} as
 // −expm1(−x) keeps thin fog's digits; σ = 0 is the limit q·τ (and 0 when q = 0, whatever τ).
 glm::vec3 inScattered(glm::vec3 sigma, glm::vec3 q, float tau) {
@@ -54,12 +91,23 @@ glm::vec3 inScattered(glm::vec3 sigma, glm::vec3 q, float tau) {
     }
     return l;
 }
+// STAND-IN
+//> // LAB 2: the constant fog's closed form, its second term: the light the medium adds over optical
+//> // depth tau, (q/σ)·(1 − e^{−σ·τ}), per channel. In stable form: finite for σ = 0 (its limit as σ → 0),
+//> // for very thin fog (σ·τ ~ 1e-6: what is 1 − e^{−x} in float then?) and for tau = ∞.
+//> // As handed out the medium adds nothing: the top left panel fades to black instead of to the fog.
+//> glm::vec3 inScattered(glm::vec3 sigma, glm::vec3 q, float tau) {
+    //> (void)sigma, (void)q, (void)tau;
+    //> return glm::vec3(0.0f);
+//> }
+// END LAB 2
 
 // The radiance reaching the eye from a surface of radiance L0 seen through optical depth tau.
 glm::vec3 fogged(glm::vec3 L0, const Medium& m, float tau) {
     return L0 * transmittance(m.sigma, tau) + inScattered(m.sigma, m.q, tau);
 }
 
+// BEGIN LAB 4
 // LAB 4: the height fog's optical depth per unit σ from height y0 along a unit direction whose y is
 // dy, over distance s (s may be ∞): τ(s) = (e^{b(y0 + dy·s)} − e^{b·y0}) / (b·dy), in stable form.
 // With k = b·dy: τ = e^{E}·g, E = b·y0 + max(k·s, 0), g = (1 − e^{−|k|·s})/|k| — the exponents
@@ -75,6 +123,20 @@ float opticalDepth(float y0, float dy, float s, float b) {
     const float half = std::exp(0.5f * exponent);  // e^E as (e^{E/2})², g between: no overflow alone
     return (g * half) * half;
 }
+// STAND-IN
+//> // LAB 4: the height fog's optical depth. σ(y) = σ·e^{b·y} and q(y) = q·e^{b·y} (b < 0: thinner
+//> // higher up) along the ray y(t) = y0 + dy·t (dy: the y of its unit direction) give the constant fog's
+//> // form over τ(s) = ∫0..s e^{b·y(t)} dt instead of s:
+//> //   τ(s) = (e^{b·(y0 + dy·s)} − e^{b·y0}) / (b·dy)
+//> // Return it in a form that stays finite and accurate: for a level ray (dy = 0: the limit as b·dy → 0),
+//> // for s = ∞ (the sky: finite only when the ray rises into thinner fog), and for a camera high in thin
+//> // fog looking down (e^{b·y0} rounds to 0 and e^{b·dy·s} to ∞ in float; their product does not).
+//> // As handed out τ = s: the bottom right panel is constant fog.
+//> float opticalDepth(float y0, float dy, float s, float b) {
+    //> (void)y0, (void)dy, (void)b;
+    //> return s;
+//> }
+// END LAB 4
 
 // The height fog: the constant fog's form over τ(s) instead of s,
 //   L = L0·e^{−σ·τ(s)} + (q/σ)·(1 − e^{−σ·τ(s)})
@@ -143,6 +205,7 @@ struct VsSky {
     SkyVertex operator()(const SkyIn& in) const { return {glm::vec4(in.ndc, 1.0f, 1.0f)}; }
 };
 
+// BEGIN LAB 3 (out of order)
 // LAB 3: the sky. The background is infinitely far away and shines nothing of its own (L0 = 0): what
 // reaches the eye along the pixel's ray is what the medium adds over s = ∞.
 struct PsSky {
@@ -153,6 +216,20 @@ struct PsSky {
                 1.0f};
     }
 };
+// STAND-IN
+//> // LAB 3: the sky, drawn where no surface is. The lecture: "the background should be infinitely far
+//> // away" and shine nothing of its own (L0 = 0): what reaches the eye along the pixel's ray is what the
+//> // medium adds over s = ∞ (throughTheMedium, at the pixel centre in.position.x, in.position.y).
+//> // As handed out the sky is black: coloured fog does not hide the background (the bottom left panel).
+//> struct PsSky {
+    //> Medium medium;
+    //> PanelRays rays;
+    //> glm::vec4 operator()(const SkyVertex& in) const {
+        //> (void)in;
+        //> return {0.0f, 0.0f, 0.0f, 1.0f};
+    //> }
+//> };
+// END LAB 3
 
 // The panels' media (the lecture's scenes fog-constant, fog-black, fog-coloured and fog-height draw the
 // same): grey-blue fog; the same without its source; three times as dense and sand-coloured; the
