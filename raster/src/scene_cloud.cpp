@@ -44,7 +44,8 @@ media::VolumeLight cloudLight() {
 }
 
 // The volume file of the options, or the generated cloud. A file's densities are scaled so that its
-// densest voxel has kPeakExtinction, as the generated cloud's has.
+// densest voxel has kPeakExtinction, as the generated cloud's has; its voxels are taken as cubes, the
+// longest side kCloudSize, centred on kCloudCentre.
 media::VoxelGrid cloudGrid(const SceneOptions& o) {
     if (o.volume.empty()) return media::makeCloudGrid(int(o.voxels.value_or(kDefaultCloudVoxels)), o.seed);
     const bool nvdb = o.volume.size() >= 5 && o.volume.compare(o.volume.size() - 5, 5, ".nvdb") == 0;

@@ -53,7 +53,7 @@ struct CloudVolume {
     VoxelGrid grid;
     Box box;                      // [0, dims], voxels
     float extinctionScale = 1.0f;  // μ = scale·ρ per voxel
-    int cellVoxels = 16;          // majorant cells' edge, voxels (the last cell of an axis may be smaller)
+    int cellVoxels = 16;          // majorant cells' edge at most, voxels: ⌈dims/cellVoxels⌉ equal cells an axis
     MajorantGrid majorant;        // per cell: an upper bound of μ there (0: empty)
 
     // μ at p (voxel units): the trilinear density times the scale, 0 outside the box. The eight
