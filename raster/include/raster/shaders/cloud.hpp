@@ -26,6 +26,9 @@ namespace raster::shaders {
 
 struct PsCloudMarch {
     using Input = MediaRayVertex;
+    // Drawn blending "over" (ONE, INV_SRC_ALPHA), which no specialised loop draws: none compiled, the
+    // generic loop for its one draw (specialised_states.hpp).
+    using SpecialisedStates = raster::SpecialisedStates<>;
     glm::mat4 invViewProj{1.0f};
     glm::vec3 eye{0.0f};              // world, metres
     glm::vec3 origin{0.0f};           // world position of the voxels' corner (0, 0, 0)
