@@ -237,6 +237,11 @@ inline void addContentOptions(CLI::App& command, SceneOptions& options) {
     addWholeNumber(command, "--seed", options.seed, 0, UINT32_MAX,
                    "the simulation's seed (fire, labs that simulate; particles and fog have none)");
     addWholeNumber(command, "--cubes", options.cubes, 0, 1024, "fog: cubes per side of the grid");
+    addOptionalWholeNumber(command, "--voxels", options.voxels, 1, 1024,
+                           "cloud: voxels per axis of the generated cloud (256)");
+    command.add_option("--volume", options.volume,
+                       "cloud: a volume file instead of the generated cloud (.nvdb, name_XxYxZ_uint8.raw or "
+                       "name_XxYxZ_float32.raw)");
     command
         .add_option_function<std::string>(
             "--fog", [&options](const std::string& fog) { options.heightFog = fog == "height"; },

@@ -61,7 +61,8 @@ const char* fogFigureTitle(const std::string& name) {
         {"media-absorption", "ray-marched metaballs that only absorb before a checkered room (--sigma)"},
         {"media-emission", "ray-marched metaballs that only emit, glowing before a dim room (--source)"},
         {"media-scattering", "single scattering, back-lit: isotropic | Rayleigh | Henyey-Greenstein g = 0.7"},
-        {"media-euler", "Euler | exponential step at 8 steps | converged; red: L > 1, blue: L < 0"}};
+        {"media-euler", "Euler | exponential step at 8 steps | converged; red: L > 1, blue: L < 0"},
+        {"cloud", "a 256^3 voxel cloud, sun-lit with shadow rays, over the fog's ground (--voxels, --volume)"}};
     const auto it = titles.find(name);
     return it == titles.end() ? nullptr : it->second;
 }

@@ -107,6 +107,10 @@ std::unique_ptr<Scene> makeFogFigureChecked(std::string_view name, const SceneOp
     requireCubes(options);
     return makeFogFigureScene(name, options);
 }
+std::unique_ptr<Scene> makeCloudChecked(std::string_view, const SceneOptions& options) {
+    requireCubes(options);
+    return makeCloudScene(options);
+}
 std::unique_ptr<Scene> makeMediaChecked(std::string_view, const SceneOptions& options) {
     requireCubes(options);
     return makeMediaClosedFormScene(options);
@@ -151,6 +155,7 @@ const std::vector<BuiltinScene>& builtinScenes() {
         for (std::string_view name : fogFigureNames()) list.push_back({name, kFogCamera, makeFogFigureChecked});
         list.push_back({"media-closed-form", kMediaCamera, makeMediaChecked});
         list.push_back({"media", kMediaMarchCamera, makeNamed<makeMediaMarchScene>});
+        list.push_back({"cloud", kCloudCamera, makeCloudChecked});
         for (std::string_view name : mediaFigureNames())
             list.push_back({name, name == "media-absorption" || name == "media-emission" ? kMediaFigureCamera
                                                                                          : kMediaPanelCamera,

@@ -41,6 +41,10 @@ struct SceneOptions {
     uint32_t cubes = 16;      // fog: cubes per side
     bool heightFog = true;    // fog: "height" (true) or "constant"
     std::string texture;      // particles, fire: a PNG to use instead of the generated fire texture
+    // cloud: a volume file (.nvdb, name_XxYxZ_uint8.raw or _float32.raw) instead of the generated
+    // cloud, and the generated cloud's voxels per axis (1 to 1024; unset: 256, seeded by `seed`).
+    std::string volume;
+    std::optional<uint32_t> voxels;
     // Animated scenes (fire): the clock's start, in seconds, simulated before the first frame, so
     // that a frame is a function of the options alone (the same bits at any thread count). Finite,
     // in [0, kMaxStartTime]. Unset: the scene's own (fire: kDefaultFireTime, burning steadily).

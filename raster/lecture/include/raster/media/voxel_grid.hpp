@@ -57,6 +57,10 @@ public:
         const size_t at = size_t(x) + size_t(dims_.x) * (size_t(y) + size_t(dims_.y) * size_t(z));
         return type_ == VoxelType::UInt8 ? float(bytes_[at]) * (scale_ / 255.0f) : floats_[at];
     }
+    // The voxels in storage order (header): floats for Float32 grids, bytes for UInt8 ones (the other
+    // pointer is null or dangling-empty); for samplers that index them directly.
+    const float* floatData() const { return floats_.data(); }
+    const uint8_t* byteData() const { return bytes_.data(); }
     // Trilinear density at world position p (header: convention); 0 outside bounds().
     float sample(const glm::vec3& p) const;
     // An upper bound of sample(p) for every p in the world box [lo, hi] (the voxels of its trilinear

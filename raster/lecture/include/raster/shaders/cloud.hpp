@@ -1,0 +1,79 @@
+// The `cloud` scene's pixel shader: a full-screen triangle whose pixels march their view ray through a
+// voxel cloud (raster/media/cloud_march.hpp) and return it premultiplied, to be blended over what is
+// drawn already (ONE, INV_SRC_ALPHA: dst' = src.rgb + (1 − T)·… see below).
+//
+// The world and the cloud's voxels: voxel = (world − origin)·voxelsPerMetre, one uniform scale, so the
+// view ray's direction is the same in both and a distance s in voxels is s/voxelsPerMetre metres.
+//
+// Compositing with the ground's fog (shaders/fog.hpp): the ground pass left dst = F + T_f·G along the
+// ray (fog in-scattering F and transmittance T_f over the whole path, the surface's G behind). Taking
+// the cloud's medium as lying at its box's entry distance s_e (the fog inside the box is left out), the
+// radiance is F_e + T_e·(L + T·(dst − F_e)/T_e) = T·dst + T_e·L + (1 − T)·F_e, with F_e and T_e the
+// fog's in-scattering and transmittance over [0, s_e]: the shader returns rgb = T_e·L + (1 − T)·F_e and
+// alpha = 1 − T, and the blend ONE, INV_SRC_ALPHA adds T·dst. A ray that misses the box returns 0: dst
+// unchanged.
+#pragma once
+
+#include <algorithm>
+#include <type_traits>
+#include <glm/glm.hpp>
+
+#include "raster/media/cloud_march.hpp"
+#include "raster/shaders/fog.hpp"
+#include "raster/shaders/media.hpp"
+
+namespace raster::shaders {
+
+struct PsCloudMarch {
+    using Input = MediaRayVertex;
+    // Drawn blending "over" (ONE, INV_SRC_ALPHA), which no specialised loop draws: none compiled, the
+    // generic loop for its one draw (specialised_states.hpp).
+    using SpecialisedStates = raster::SpecialisedStates<>;
+    glm::mat4 invViewProj{1.0f};
+    glm::vec3 eye{0.0f};              // world, metres
+    glm::vec3 origin{0.0f};           // world position of the voxels' corner (0, 0, 0)
+    float voxelsPerMetre = 1.0f;
+    const media::CloudVolume* volume = nullptr;
+    media::VolumeLight light;
+    media::CloudMarchSettings settings;
+    FogMedium fog;                    // the ground's fog, in front of the cloud
+
+    glm::vec3 eyeVoxels() const { return (eye - origin) * voxelsPerMetre; }
+
+    // Not inlined, as PsMediaMarch::shade: the march inlined into each flattened fill loop would make
+    // the scene's file a compile of minutes; a call per pixel is nothing beside its march.
+    [[gnu::noinline]] glm::vec4 shade(const glm::vec3& d) const {
+        const glm::vec3 o = eyeVoxels();
+        const auto [s_near, s_far] = media::slabInterval(volume->box, o, d);
+        const float s0 = std::max(s_near, 0.0f);
+        if (!(s_far > s0)) return glm::vec4(0.0f);
+        const media::MarchResult r = media::marchCloud(*volume, light, settings, o, d, s0, s_far);
+        const float opacity = 1.0f - r.transmittance;
+        const float tau = fog.opticalDepth(eye.y, d.y, s0 / voxelsPerMetre);
+        glm::vec3 rgb;
+        for (int c = 0; c < 3; ++c) {
+            const float e = fog.sigma[c] == 0.0f ? 0.0f : expm1(-(fog.sigma[c] * tau));
+            rgb[c] = (1.0f + e) * r.radiance[c] + opacity * fog.inScattered(c, tau, e);
+        }
+        return {glm::clamp(rgb, 0.0f, 1.0f), opacity};
+    }
+
+    template <class T>
+    glm::vec<4, T> operator()(const MediaRayVertexT<T>& in) const {
+        const glm::vec<3, T> d = viewRay(invViewProj, in.ndc);
+        if constexpr (std::is_same_v<T, float>) {
+            return shade(d);
+        } else {
+            constexpr int kLanes = int(sizeof(T) / sizeof(float));
+            alignas(64) float dx[kLanes], dy[kLanes], dz[kLanes], out[4][kLanes];
+            d.x.store(dx), d.y.store(dy), d.z.store(dz);
+            for (int l = 0; l < kLanes; ++l) {
+                const glm::vec4 c = shade({dx[l], dy[l], dz[l]});
+                for (int k = 0; k < 4; ++k) out[k][l] = c[k];
+            }
+            return {T::load(out[0]), T::load(out[1]), T::load(out[2]), T::load(out[3])};
+        }
+    }
+};
+
+}  // namespace raster::shaders

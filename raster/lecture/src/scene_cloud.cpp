@@ -1,0 +1,140 @@
+// The `cloud` scene: a voxel cloud (media::makeCloudGrid, or a volume file) lit by the sun with single
+// scattering, shadow rays and ambient light (raster/media/cloud_march.hpp), over the fog scene's ground
+// and sky. The ground is the fog scene itself, drawn first (its own draws and state); the cloud is then
+// one full-screen draw whose pixel shader marches each pixel's view ray (raster/shaders/cloud.hpp),
+// blended over it premultiplied.
+//
+// Depth: the cloud is drawn without a depth test, over whatever the ground pass left. That is correct
+// wherever the cloud's box lies in front of the surface each ray hits: the box's bottom (kCloudBottom)
+// is above the cubes' tops (y = 1) and the ground (y = 0), so for an eye above the cubes (every camera
+// the scene and the viewer start from) a ray reaches the box before any surface or never meets both.
+// An eye placed among the cubes can see the cloud drawn over a cube that hides it.
+//
+// Empty space is skipped through a majorant grid of kCloudCellVoxels³-voxel cells
+// (docs/PERFORMANCE.md, "cloud": the cell size measured).
+#include <algorithm>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "raster/pipeline_impl.hpp"
+#include "raster/shaders/cloud.hpp"
+#include "scene_list.hpp"
+
+namespace raster {
+
+namespace {
+
+constexpr glm::vec3 kCloudCentre{0.0f, 3.6f, -4.0f};  // world, metres
+constexpr float kCloudSize = 4.8f;                      // the volume's longest side, metres
+constexpr float kCloudBottom = kCloudCentre.y - 0.5f * kCloudSize;
+static_assert(kCloudBottom > 1.0f, "the cloud's box must lie above the cubes (header: depth)");
+constexpr float kPeakExtinction = 12.0f;  // the densest voxel's extinction, 1/m
+constexpr uint32_t kDefaultCloudVoxels = 256;
+
+// The sun of the ground's shading (PsFog's light), the sky's blue as ambient light.
+media::VolumeLight cloudLight() {
+    media::VolumeLight light;
+    light.toLight = glm::normalize(glm::vec3(0.3f, 1.0f, 0.5f));
+    light.sun = {22.0f, 21.0f, 19.0f};
+    light.ambient = {0.30f, 0.36f, 0.46f};
+    light.g = 0.3f;
+    light.albedo = 0.95f;
+    return light;
+}
+
+// The volume file of the options, or the generated cloud. A file's densities are scaled so that its
+// densest voxel has kPeakExtinction, as the generated cloud's has; its voxels are taken as cubes, the
+// longest side kCloudSize, centred on kCloudCentre.
+media::VoxelGrid cloudGrid(const SceneOptions& o) {
+    if (o.volume.empty()) return media::makeCloudGrid(int(o.voxels.value_or(kDefaultCloudVoxels)), o.seed);
+    const bool nvdb = o.volume.size() >= 5 && o.volume.compare(o.volume.size() - 5, 5, ".nvdb") == 0;
+    return nvdb ? media::loadNanoVdbGrid(o.volume)
+                : media::loadRawVoxelGrid(o.volume, media::VoxelBox{glm::vec3(-1.0f), glm::vec3(1.0f)});
+}
+
+// The ground scene's options: the cloud's camera and the fog options as given.
+SceneOptions groundOptions(const SceneOptions& o) {
+    SceneOptions ground = o;
+    ground.camera = o.camera.value_or(kCloudCamera);
+    return ground;
+}
+
+class CloudScene final : public Scene {
+public:
+    explicit CloudScene(const SceneOptions& o) : ground_(makeFogScene(groundOptions(o))) {
+        media::VoxelGrid grid = cloudGrid(o);
+        const glm::ivec3 dims = grid.dims();
+        const float longest = float(std::max({dims.x, dims.y, dims.z}));
+        const float voxels_per_metre = longest / kCloudSize;
+        const float peak = grid.maxDensity();
+        // μ per voxel = ρ·(kPeakExtinction/ρ_max)/voxelsPerMetre; an empty grid stays empty.
+        const float scale = peak > 0.0f ? kPeakExtinction / peak / voxels_per_metre : 0.0f;
+        volume_ = media::makeCloudVolume(std::move(grid), scale, kCloudCellVoxels);
+        const SceneCamera camera = o.camera.value_or(kCloudCamera);
+        ps_.invViewProj = glm::inverse(sceneProjection(o) * sceneView(camera));
+        ps_.eye = camera.eye;
+        ps_.voxelsPerMetre = voxels_per_metre;
+        ps_.origin = kCloudCentre - 0.5f * glm::vec3(dims) / voxels_per_metre;
+        ps_.volume = &volume_;
+        ps_.light = cloudLight();
+        ps_.fog.height = o.heightFog;
+        if (o.fogSigma) ps_.fog.sigma = *o.fogSigma;
+        if (o.fogSource) ps_.fog.q = *o.fogSource;
+        if (o.fogFalloff) ps_.fog.b = -*o.fogFalloff;
+    }
+    std::string_view name() const override { return "cloud"; }
+
+    // The pixel shader's march at the pixel's centre, every evaluated sample recorded; distances in
+    // metres from the eye.
+    std::optional<PixelMarch> pixelMarch(uint32_t x, uint32_t y, uint32_t width, uint32_t height) const override {
+        const glm::vec2 ndc{(float(x) + 0.5f) / float(width) * 2.0f - 1.0f,
+                            1.0f - (float(y) + 0.5f) / float(height) * 2.0f};
+        const glm::vec3 d = shaders::viewRay(ps_.invViewProj, ndc);
+        const glm::vec3 o = ps_.eyeVoxels();
+        const float metres = 1.0f / ps_.voxelsPerMetre;
+        PixelMarch march;
+        const media::MarchResult r =
+            media::marchCloud(volume_, ps_.light, ps_.settings, o, d, [&](media::MarchSample s) {
+                s.s *= metres;
+                march.samples.push_back(s);
+            });
+        const auto [s_near, s_far] = media::slabInterval(volume_.box, o, d);
+        const float s0 = std::max(s_near, 0.0f);
+        march.steps = s_far > s0 ? std::max(1u, uint32_t(std::ceil((s_far - s0) / ps_.settings.step))) : 0u;
+        march.t0 = s0 * metres, march.t1 = s_far * metres;
+        march.ds = march.steps > 0 ? (march.t1 - march.t0) / float(march.steps) : 0.0f;
+        march.radiance = r.radiance, march.transmittance = r.transmittance;
+        const glm::vec4 c = ps_.shade(d);
+        march.colour = glm::vec3(c);  // premultiplied: the ground behind adds T·dst
+        march.densityEvaluations = r.densityEvaluations;
+        return march;
+    }
+
+    void render(Context& context, RenderTarget& color, DepthTarget& depth) override {
+        ground_->render(context, color, depth);
+        triangle_.bind(context);
+        BlendState over;
+        over.renderTarget[0] = {true, Blend::One, Blend::InvSrcAlpha, BlendOp::Add,
+                                Blend::One, Blend::InvSrcAlpha, BlendOp::Add, 0xF};
+        context.setBlendState(over);
+        context.draw(vs_, ps_, 3);
+    }
+
+private:
+    std::unique_ptr<Scene> ground_;
+    media::CloudVolume volume_;
+    FullScreenTriangle triangle_;
+    shaders::VsMediaRay vs_;
+    shaders::PsCloudMarch ps_;
+};
+
+}  // namespace
+
+std::unique_ptr<Scene> makeCloudScene(const SceneOptions& options) {
+    RASTER_REQUIRE(!options.voxels || (*options.voxels >= 1 && *options.voxels <= 1024), InvalidArgument,
+                   "cloud: " + std::to_string(options.voxels.value_or(0)) + " voxels per axis (1 to 1024)");
+    return std::make_unique<CloudScene>(options);
+}
+
+}  // namespace raster
