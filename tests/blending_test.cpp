@@ -17,7 +17,7 @@
 #include "raster/image_compare.hpp"
 #include "raster/particle_blending.hpp"
 #include "raster/scenes.hpp"
-#include "raster/stages/output_merger.hpp"
+#include "raster/stages/9_output_merger.hpp"
 #include "raster/trace.hpp"
 
 namespace raster {

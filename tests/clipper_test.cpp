@@ -1,6 +1,6 @@
 // Clipping: the clipper unit on hand-made vertices, and through the pipeline the near and far
 // planes, the guard band, trivial rejection, non-finite positions and watertightness after clipping.
-#include "raster/stages/clipper.hpp"
+#include "raster/stages/4_clipper.hpp"
 
 #include <gtest/gtest.h>
 

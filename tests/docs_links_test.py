@@ -21,8 +21,8 @@ ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)),
 # Markdown files whose links are checked: the README, and every .md under these folders.
 DOC_ROOTS = ["docs", "labs"]
 # Source trees whose text may name no issue and no commit; corpora and image data are skipped.
-CODE_ROOTS = ["raster/pipeline/src", "raster/lecture/src", "raster/tooling/src", "raster/tools", "tests", "labs", "solutions", ".ci"]
-CODE_FILES = ["CMakeLists.txt", "raster/CMakeLists.txt", "CMakePresets.json"]
+CODE_ROOTS = ["raster", "tests", "labs", "solutions", ".ci"]
+CODE_FILES = ["CMakeLists.txt", "CMakePresets.json"]
 CODE_SKIP_DIRS = {"corpus", "__pycache__"}
 CODE_EXTENSIONS = {".cpp", ".hpp", ".h", ".py", ".sh", ".cmake", ".txt", ".json", ".gp", ""}
 

@@ -1,6 +1,6 @@
 // The geometry shader stage: output streams, strips cut into primitives, the lecture's billboard
 // shader through the whole pipeline, and the errors a geometry shader can cause.
-#include "raster/stages/geometry_shader.hpp"
+#include "raster/stages/3_geometry_shader.hpp"
 
 #include <gtest/gtest.h>
 
@@ -14,8 +14,8 @@
 #include "raster/pipeline.hpp"
 #include "raster/shaders/basic.hpp"
 #include "lecture/fire_shaders.hpp"
-#include "raster/shaders/billboard.hpp"
 #include "raster/pipeline_impl.hpp"
+#include "raster/shaders/billboard.hpp"
 
 namespace raster {
 namespace {

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The draw's hooks come through one door (raster/draw_hooks.hpp, docs/DESIGN.md "Watching the
-pipeline"): no stage header reaches the trace or the teaching pipeline through its includes, and the
-trace's interface reaches no stage.
+pipeline"): no stage header reaches the trace or the teaching pipeline through its includes, nor a
+fast twin (fastpath/) or a fill loop (fill/), and the trace's interface reaches no stage.
 
     hook_includes_test.py <source-dir>
 
@@ -59,6 +59,13 @@ def main(source_dir):
         chain = chain_to(stage, lambda h: os.path.basename(h) in HOOK_HEADERS, files)
         if chain:
             print("hook_includes_test: stage header %s reaches %s" % (stage, " -> ".join(chain)))
+            failed += 1
+    # The stages are the rules; their fast twins (fastpath/) and the loops that run them (fill/)
+    # build on them, never the other way round.
+    for stage in stages:
+        chain = chain_to(stage, lambda h: h.startswith(("raster/fastpath/", "raster/fill/")), files)
+        if chain:
+            print("hook_includes_test: stage header %s reaches a fast path: %s" % (stage, " -> ".join(chain)))
             failed += 1
     for trace in traces:
         chain = chain_to(trace, lambda h: "/stages/" in h, files)

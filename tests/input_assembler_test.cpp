@@ -1,6 +1,6 @@
 // The input assembler through the pipeline: layouts and formats, topologies, indexed draws and the
 // errors a draw raises before it writes anything.
-#include "raster/stages/input_assembler.hpp"
+#include "raster/stages/1_input_assembler.hpp"
 
 #include <gtest/gtest.h>
 
@@ -14,8 +14,8 @@
 #include "raster/check.hpp"
 #include "raster/input_layout.hpp"
 #include "raster/pipeline.hpp"
-#include "raster/shaders/basic.hpp"
 #include "raster/pipeline_impl.hpp"
+#include "raster/shaders/basic.hpp"
 
 namespace raster {
 namespace {

@@ -1,6 +1,6 @@
-#include "raster/stages/output_merger.hpp"
 #include "raster/fastpath/blend_rgba8.hpp"
 #include "raster/fastpath/merge_policy.hpp"
+#include "raster/stages/9_output_merger.hpp"
 
 #include <gtest/gtest.h>
 

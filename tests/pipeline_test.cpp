@@ -16,10 +16,10 @@
 #include <vector>
 
 #include "raster/check.hpp"
+#include "raster/pipeline_impl.hpp"
 #include "raster/scenes.hpp"
 #include "raster/shaders/basic.hpp"
 #include "raster/trace.hpp"
-#include "raster/pipeline_impl.hpp"
 
 namespace raster {
 namespace {

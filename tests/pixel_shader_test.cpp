@@ -1,6 +1,6 @@
 // The pixel shader stage through the pipeline: perspective-correct interpolation, SV_Position,
 // discard, multiple render targets, derivatives and mip selection, early depth and blend no-ops.
-#include "raster/stages/pixel_shader.hpp"
+#include "raster/stages/8_pixel_shader.hpp"
 
 #include <gtest/gtest.h>
 
@@ -14,10 +14,10 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "raster/pipeline.hpp"
+#include "raster/pipeline_impl.hpp"
 #include "raster/shader_context.hpp"
 #include "raster/shaders/basic.hpp"
 #include "raster/texture.hpp"
-#include "raster/pipeline_impl.hpp"
 
 #include "eight_only.hpp"
 

@@ -1,7 +1,7 @@
 // Rasterisation through the whole pipeline: triangle coverage against an independent brute-force
 // reference, watertight fans and grids, the top-left rule, culling, points, lines, depth
 // interpolation, determinism across thread counts, and the fast pipeline against the reference one.
-#include "raster/stages/rasterizer.hpp"
+#include "raster/stages/7_rasterizer.hpp"
 
 #include <gtest/gtest.h>
 
@@ -853,7 +853,7 @@ TEST(Lines, DiagonalHasOnePixelPerColumn) {
 }
 
 TEST(Lines, RandomLinesTakeTheNearestCentrePerMajorStep) {
-    // 150×100: lines cross tile borders. Per the rule in stages/setup.hpp: along the major axis the
+    // 150×100: lines cross tile borders. Per the rule in stages/5_setup.hpp: along the major axis the
     // centres in [start, end) in the direction of travel, on the minor axis the pixel whose centre
     // is nearest the line (floor of the line's minor coordinate there: ties go up).
     constexpr int W = 150, H = 100;

@@ -22,7 +22,7 @@
 
 #include "raster/format.hpp"
 #include "raster/simd/ops.hpp"
-#include "raster/stages/output_merger.hpp"
+#include "raster/stages/9_output_merger.hpp"
 
 namespace raster {
 namespace {

@@ -15,11 +15,11 @@
 
 #include "raster/scenes.hpp"
 #include "lecture/fire_shaders.hpp"
+#include "raster/fastpath/transparency.hpp"
+#include "raster/pipeline_impl.hpp"
 #include "raster/shaders/billboard.hpp"
 #include "raster/simd.hpp"
-#include "raster/fastpath/transparency.hpp"
 #include "raster/texture.hpp"
-#include "raster/pipeline_impl.hpp"
 
 #include "eight_only.hpp"
 

@@ -17,9 +17,9 @@
 #include <vector>
 
 #include "raster/pipeline.hpp"
+#include "raster/pipeline_impl.hpp"
 #include "raster/scenes.hpp"
 #include "raster/shaders/basic.hpp"
-#include "raster/pipeline_impl.hpp"
 
 namespace raster {
 namespace {

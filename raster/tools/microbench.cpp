@@ -33,8 +33,8 @@
 #include "raster/scenes.hpp"
 #include "raster/shaders/basic.hpp"
 #include "lecture/fire_shaders.hpp"
-#include "raster/shaders/billboard.hpp"
 #include "raster/pipeline_impl.hpp"
+#include "raster/shaders/billboard.hpp"
 
 namespace raster::tools {
 

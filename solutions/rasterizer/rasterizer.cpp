@@ -5,7 +5,7 @@
 // Which pixels does a triangle cover? This file answers for the pipeline: labCovers is the coverage
 // test the lab's draw runs with (Context::setCoverageTest), asked for every pixel centre of every
 // triangle's bounding box. It is labs/rasterizer/rasterizer.cpp with every `LAB n` place filled in;
-// its answers are the library's (stages/setup.hpp, stages/rasterizer.hpp), bit for bit.
+// its answers are the library's (stages/5_setup.hpp, stages/7_rasterizer.hpp), bit for bit.
 // STAND-IN
 //> // Lab: inside the rasterizer (the pipeline's rasterizer stage: coverage, 16.8 fixed point, the
 //> // top-left rule). README.md says what to do and what to look at.

@@ -34,9 +34,9 @@
 
 #include "raster/pipeline.hpp"
 #include "lecture/fire_shaders.hpp"
+#include "raster/pipeline_impl.hpp"
 #include "raster/shaders/billboard.hpp"
 #include "raster/texture.hpp"
-#include "raster/pipeline_impl.hpp"
 
 namespace {
 
@@ -60,7 +60,7 @@ struct VsPass {
 };
 
 // A constant colour, or the fragment's depth as grey (z is in the viewport's [minDepth, maxDepth]
-// for every pixel the pipeline shades: pixel_shader.hpp). Eight wide too.
+// for every pixel the pipeline shades: stages/8_pixel_shader.hpp). Eight wide too.
 struct PsPos {
     using Input = Pos;
     glm::vec4 color{1.0f};

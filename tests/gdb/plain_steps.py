@@ -15,22 +15,22 @@ STAGES = [
     ("input assembler", "raster::assemble", "src/input_assembler.cpp"),
     ("vertex shader", "(anonymous namespace)::VsPlain::operator()", "plain_draw.cpp"),
     ("geometry shader", "(anonymous namespace)::GsPlain::operator()", "plain_draw.cpp"),
-    ("clipper", "raster::outcode", "stages/clipper.hpp"),
-    ("setup", "raster::setupTriangle", "stages/setup.hpp"),
-    ("rasterizer edge function", "raster::edgeAt", "stages/rasterizer.hpp"),
+    ("clipper", "raster::outcode", "stages/4_clipper.hpp"),
+    ("setup", "raster::setupTriangle", "stages/5_setup.hpp"),
+    ("rasterizer edge function", "raster::edgeAt", "stages/7_rasterizer.hpp"),
     ("pixel shader", "(anonymous namespace)::PsPlain::operator()", "plain_draw.cpp"),
-    ("depth test", "raster::depthPasses", "stages/output_merger.hpp"),
-    ("blend", "raster::mergeFragment<float>", "stages/output_merger.hpp"),
+    ("depth test", "raster::depthPasses", "stages/9_output_merger.hpp"),
+    ("blend", "raster::mergeFragment<float>", "stages/9_output_merger.hpp"),
 ]
 # Files each backtrace must name (its frames' source files, innermost first).
 BACKTRACE_FILES = {
-    "vertex shader": ["stages/vertex_shader.hpp", "pipeline_impl.hpp"],
-    "geometry shader": ["stages/geometry_shader.hpp", "pipeline_impl.hpp"],
-    "clipper": ["stages/binner.hpp", "pipeline_impl.hpp"],
-    "rasterizer edge function": ["stages/rasterizer.hpp", "fill/quads.hpp", "fill/fill_tile.hpp", "pipeline_impl.hpp"],
-    "pixel shader": ["stages/pixel_shader.hpp", "fill/tile.hpp", "fill/quads.hpp"],
+    "vertex shader": ["stages/2_vertex_shader.hpp", "pipeline_impl.hpp"],
+    "geometry shader": ["stages/3_geometry_shader.hpp", "pipeline_impl.hpp"],
+    "clipper": ["bin_primitives.hpp", "pipeline_impl.hpp"],
+    "rasterizer edge function": ["stages/7_rasterizer.hpp", "fill/quads.hpp", "fill/fill_tile.hpp", "pipeline_impl.hpp"],
+    "pixel shader": ["stages/8_pixel_shader.hpp", "fill/tile.hpp", "fill/quads.hpp"],
     "depth test": ["fastpath/merge_policy.hpp", "fill/tile.hpp", "fill/quads.hpp"],
-    "blend": ["stages/output_merger.hpp", "fastpath/merge_policy.hpp", "fill/tile.hpp", "fill/quads.hpp",
+    "blend": ["stages/9_output_merger.hpp", "fastpath/merge_policy.hpp", "fill/tile.hpp", "fill/quads.hpp",
               "fill/fill_tile.hpp"],
 }
 

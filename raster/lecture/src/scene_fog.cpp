@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
+#include "raster/pipeline_impl.hpp"
 #include "raster/shaders/basic.hpp"
 #include "raster/shaders/fog.hpp"
-#include "raster/pipeline_impl.hpp"
 #include "scene_list.hpp"
 
 namespace raster {

@@ -2,9 +2,9 @@
 #include <cmath>
 
 #include "lecture/fire_shaders.hpp"
+#include "raster/pipeline_impl.hpp"
 #include "raster/shaders/basic.hpp"
 #include "raster/shaders/billboard.hpp"
-#include "raster/pipeline_impl.hpp"
 #include "scene_list.hpp"
 
 namespace raster {

@@ -1,4 +1,4 @@
-#include "raster/stages/input_assembler.hpp"
+#include "raster/stages/1_input_assembler.hpp"
 
 #include <unordered_map>
 

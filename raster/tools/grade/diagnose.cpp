@@ -8,7 +8,7 @@
 #include <optional>
 #include <utility>
 
-#include "raster/stages/rasterizer.hpp"
+#include "raster/stages/7_rasterizer.hpp"
 
 namespace raster::grade {
 namespace {

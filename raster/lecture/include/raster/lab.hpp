@@ -21,10 +21,10 @@
 
 #include "raster/pipeline.hpp"
 #include "raster/scenes.hpp"
-#include "raster/teaching_draw.hpp"
 #include "raster/shaders/basic.hpp"
 #include "raster/shaders/billboard.hpp"
 #include "raster/shaders/fog.hpp"
+#include "raster/teaching_draw.hpp"
 
 namespace raster {
 

@@ -63,7 +63,7 @@ struct ParticleStates {
 // Anything else (over: destination factor InvSrcAlpha beside a non-zero source term; Subtract, which
 // is s − d; factors that read the destination) is order-dependent. In floats a sum's last bits depend
 // on its order; into an R8G8B8A8_UNORM target the additive blends add whole 1/255 steps and saturate
-// (output_merger.hpp), which is exactly order-independent.
+// (stages/9_output_merger.hpp), which is exactly order-independent.
 bool blendIsOrderIndependent(const BlendState& state, int targets = 1);
 
 // The blend equation of target slot 0 as a message shows it: "(SrcAlpha, One, Add)".

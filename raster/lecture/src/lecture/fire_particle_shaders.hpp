@@ -16,8 +16,8 @@
 #include "raster/input_layout.hpp"
 #include "raster/sampler.hpp"
 #include "raster/shader.hpp"
-#include "raster/texture.hpp"
 #include "raster/specialised_states.hpp"
+#include "raster/texture.hpp"
 
 namespace raster::shaders {
 

@@ -12,8 +12,8 @@
 #include "raster/sampler.hpp"
 #include "raster/shader.hpp"
 #include "raster/shaders/billboard.hpp"
-#include "raster/texture.hpp"
 #include "raster/specialised_states.hpp"
+#include "raster/texture.hpp"
 
 namespace raster::shaders {
 

@@ -24,7 +24,7 @@
 //               (renderTiles; RenderProgress::DrawScope counts the draw). Unset: a null test per tile.
 //   trace       DrawHooks::record (this draw's TraceDraw; null when no trace is set): the shaders'
 //               names (describeTraceDraw), the vertex shader's records (traceVertices), the geometry
-//               stages' records (Chunk::trace in stages/binner.hpp, gathered by gatherGeometryRecords),
+//               stages' records (Chunk::trace in stages/6_binner.hpp, gathered by gatherGeometryRecords),
 //               the statistics and whether the step limit skipped the draw (finishTraceDraw).
 //               Per fragment: FragmentHooks::covered, open, close (fill/tile.hpp), active only while
 //               a trace is set; a traced draw takes the generic tile loop. Unset: a null test per

@@ -35,14 +35,14 @@
 #include <string>
 #include <vector>
 
+#include "raster/bin_primitives.hpp"
 #include "raster/buffer.hpp"
 #include "raster/check.hpp"
 #include "raster/draw_hooks.hpp"
 #include "raster/input_layout.hpp"
 #include "raster/render_target.hpp"
 #include "raster/shader.hpp"
-#include "raster/stages/binner.hpp"
-#include "raster/stages/input_assembler.hpp"
+#include "raster/stages/1_input_assembler.hpp"
 #include "raster/states.hpp"
 #include "raster/statistics.hpp"
 #include "raster/teaching_pipeline.hpp"
@@ -153,7 +153,7 @@ class Context {
     // ---- Rasterizer ----
     void setRasterizerState(const RasterizerState& state) { rasterizer_ = state; }
     void setViewport(const Viewport& viewport) { viewport_ = viewport; }
-    // The rasterizer lab's coverage test (stages/setup.hpp's CoverageTest), or nullptr for the
+    // The rasterizer lab's coverage test (stages/5_setup.hpp's CoverageTest), or nullptr for the
     // library's rule: which pixel centres the triangles of the teaching pipeline's draws (a lab's
     // file, raster/teaching_draw.hpp) cover. The template pipeline's draws ignore it. No D3D11 state:
     // the lab's way into the rasterizer. beginSceneFrame resets it.

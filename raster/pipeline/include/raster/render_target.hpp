@@ -20,7 +20,7 @@ namespace detail {
 // colour (RGBA8) or depth (D32) and, from an aligned start and for a width that is a multiple of 16
 // pixels (every benchmark's), whole cache lines: two threads that render neighbouring tiles then
 // never write the same line. (malloc's 16-byte alignment put every tile edge in a line shared with
-// the neighbour: PERFORMANCE.md, commit 408e596.)
+// the neighbour; docs/PERFORMANCE.md has the measurement.)
 template <class T>
 struct CacheLineAllocator {
     using value_type = T;

@@ -5,10 +5,11 @@
 //
 // States are plain values. Nothing here checks a state when you build it; validate() does, with the
 // rules CreateBlendState & co. apply, and the pipeline validates every state before a draw writes
-// anything. The arithmetic that uses these states lives in stages/output_merger.hpp (blend, depth) and
+// anything. The arithmetic that uses these states lives in stages/9_output_merger.hpp (blend, depth) and
 // in the rasterizer (cull, fill, scissor, viewport).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <string_view>
@@ -143,6 +144,12 @@ struct PixelRect {
     int32_t x0 = 0, y0 = 0, x1 = -1, y1 = -1;
     bool empty() const { return x1 < x0 || y1 < y0; }
 };
+
+// The pixels in both a and b (empty() when none): a primitive's box within a tile, a tile within the
+// clip rectangle. Every path that clips a box to a tile calls this one.
+inline PixelRect intersect(const PixelRect& a, const PixelRect& b) {
+    return {std::max(a.x0, b.x0), std::max(a.y0, b.y0), std::min(a.x1, b.x1), std::min(a.y1, b.y1)};
+}
 
 // D3D11_VIEWPORT: maps normalized device coordinates to pixels (x, y, origin top left, y down) and
 // depth [0, 1] to [minDepth, maxDepth]. Everything in pixels except the two depths.

@@ -37,7 +37,7 @@
 #include "raster/input_layout.hpp"
 #include "raster/render_target.hpp"
 #include "raster/shader.hpp"
-#include "raster/stages/setup.hpp"
+#include "raster/stages/5_setup.hpp"
 
 namespace raster {
 

@@ -5,7 +5,7 @@
 // range front to back, then takes items from the back of the others' ranges until none is left.
 // Why home ranges: successive calls over the same items (the clears, then each draw's tiles, frame
 // after frame) then run mostly on the same core, so a tile's pixels stay in that core's caches
-// instead of moving between cores with every call (PERFORMANCE.md, commit 1c07b1c: particles on two
+// instead of moving between cores with every call (docs/PERFORMANCE.md: particles on two
 // threads 14.47 -> 12.34 ms a frame). Taking from the back keeps the threads busy when the ranges
 // cost different amounts.
 //

@@ -21,11 +21,11 @@
 #include <string>
 #include <type_traits>
 
+#include "raster/bin_primitives.hpp"
 #include "raster/draw_hooks.hpp"
 #include "raster/input_layout.hpp"
 #include "raster/render_target.hpp"
-#include "raster/stages/binner.hpp"
-#include "raster/stages/input_assembler.hpp"
+#include "raster/stages/1_input_assembler.hpp"
 #include "raster/teaching_pipeline.hpp"
 #include "raster/trace.hpp"
 

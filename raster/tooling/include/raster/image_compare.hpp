@@ -236,7 +236,7 @@ ComparisonResult comparePosition(Rgba8View reference, Rgba8View result, const Po
 // Cost: single-threaded, so the bits depend only on the input (and on libm: powf per pixel; exp and
 // pow once, for the kernels and the sRGB table). On this project's 2-core machine (AMD EPYC, Zen 3; GCC 12,
 // -O3 -march=native), a 1280x720 pair takes 139 ms (best of 7, process CPU time; 139 ms wall when the machine
-// was otherwise idle), measured 2026-12-03 on grade-compare (from 5d83703): a third in the separable filters,
+// was otherwise idle), measured 2026-12-03 on grade-compare: a third in the separable filters,
 // a third in the per-pixel colour conversions, a sixth in first touches of fresh memory. It grows with width
 // · height · ppd. Memory: 14 float planes of the image's size at the peak (52 MB at 1280x720).
 struct FlipOptions {

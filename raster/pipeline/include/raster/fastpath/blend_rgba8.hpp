@@ -1,5 +1,5 @@
 // The output merger's fast twins for R8G8B8A8_UNORM: whole blends fixed at compile time, each
-// accelerating the rule mergeFragment<float> (stages/output_merger.hpp) for one blend state and
+// accelerating the rule mergeFragment<float> (stages/9_output_merger.hpp) for one blend state and
 // storing exactly its bytes. tests/output_merger_test.cpp (FastBlender) checks each against that rule.
 #pragma once
 
@@ -8,7 +8,7 @@
 #include <glm/glm.hpp>
 
 #include "raster/simd/ops.hpp"
-#include "raster/stages/output_merger.hpp"
+#include "raster/stages/9_output_merger.hpp"
 
 namespace raster {
 

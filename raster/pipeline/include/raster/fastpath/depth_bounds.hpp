@@ -16,8 +16,8 @@
 #include <cstdint>
 #include <limits>
 
-#include "raster/stages/binner.hpp"
-#include "raster/stages/setup.hpp"
+#include "raster/stages/5_setup.hpp"
+#include "raster/stages/6_binner.hpp"
 #include "raster/statistics.hpp"
 
 namespace raster {

@@ -18,13 +18,13 @@
 #include <limits>
 #include <variant>
 
-#include "raster/render_target.hpp"
-#include "raster/states.hpp"
-#include "raster/simd.hpp"
-#include "raster/stages/setup.hpp"
-#include "raster/stages/output_merger.hpp"
 #include "raster/fastpath/blend_rgba8.hpp"
+#include "raster/render_target.hpp"
+#include "raster/simd.hpp"
 #include "raster/specialised_states.hpp"
+#include "raster/stages/5_setup.hpp"
+#include "raster/stages/9_output_merger.hpp"
+#include "raster/states.hpp"
 
 namespace raster {
 
@@ -44,7 +44,7 @@ Mask8 depthPasses8(Float8 fragment, Float8 stored) {
     else if constexpr (F == ComparisonFunc::Always) return Mask8::fromBits(0xFF);
     else return Mask8::fromBits(0);
 }
-// D3D's saturate with NaN -> 0, as detail::saturate in output_merger.hpp, lane by lane.
+// D3D's saturate with NaN -> 0, as detail::saturate in stages/9_output_merger.hpp, lane by lane.
 inline Float8 saturate8(Float8 v) {
     // max first: max(NaN, 0) is 0, as saturate's NaN rule wants.
     return min(max(v, Float8(0.0f)), Float8(1.0f));
@@ -155,7 +155,7 @@ using DepthPolicy = std::variant<DepthOff, DepthFixed<ComparisonFunc::Less, true
                                  DepthFixed<ComparisonFunc::LessEqual, true>,
                                  DepthFixed<ComparisonFunc::LessEqual, false>, DepthDynamic>;
 
-// One RGBA8 target with a compile-time blender from output_merger.hpp.
+// One RGBA8 target with a compile-time blender from stages/9_output_merger.hpp.
 template <class Blender>
 struct ColorFast {
     static constexpr bool kWide = std::is_same_v<Blender, BlendReplaceRgba8> || std::is_same_v<Blender, BlendAdditiveRgba8>;

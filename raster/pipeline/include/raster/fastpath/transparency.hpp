@@ -24,8 +24,8 @@
 #include <utility>
 
 #include "raster/sampler.hpp"
-#include "raster/simd.hpp"
 #include "raster/shader.hpp"
+#include "raster/simd.hpp"
 #include "raster/texture.hpp"
 
 namespace raster::detail {

@@ -16,6 +16,8 @@
 #include <utility>
 #include <vector>
 
+#include "raster/fastpath/block_coverage.hpp"
+#include "raster/fastpath/interpolate_wide.hpp"
 #include "raster/fill/tile.hpp"
 
 namespace raster {

@@ -1,10 +1,10 @@
 // The plain fill path: one primitive at a time, in the order the tile's bins list them, through the
 // stages one 2×2 quad (or one pixel) at a time —
 //
-//   rasterizer (stages/rasterizer.hpp: edge functions, top-left rule)
+//   rasterizer (stages/7_rasterizer.hpp: edge functions, top-left rule)
 //     → early depth test (Tile::earlyDepthPasses → the depth policy's test)
-//     → pixel shader (stages/pixel_shader.hpp: interpolation, QuadShader)
-//     → output merger (Tile::mergeFragment: late depth test, depth write, blend)
+//     → pixel shader (stages/8_pixel_shader.hpp: interpolation, QuadShader)
+//     → output merger (Tile::depthTestAndBlend: late depth test, depth write, blend)
 //
 // This is the path to read and to step through in a debugger (ContextOptions::plain takes it for
 // every primitive, labs/README.md shows the gdb session). It is also the only path of lines, points,
@@ -14,6 +14,7 @@
 #include <array>
 #include <cstdint>
 
+#include "raster/fastpath/rectangle.hpp"
 #include "raster/fill/tile.hpp"
 
 namespace raster {

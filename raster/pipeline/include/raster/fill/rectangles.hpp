@@ -1,5 +1,5 @@
 // The rectangle path: a billboard that the setup recognised as a screen-aligned rectangle of one
-// depth (stages/setup.hpp, setupRectangle) is shaded in 4×2 blocks by an eight-wide shader, two
+// depth (stages/5_setup.hpp, setupRectangle) is shaded in 4×2 blocks by an eight-wide shader, two
 // neighbouring blocks per call where the shader also takes Float8x2 (a pair). Its attributes are
 // planes: attribute = (base + i·step_x) + j·step_y at pixel (x0 + i, y0 + j) of its box, the plain
 // path's order (fill/quads.hpp, fillRectangleQuads), so the same bits lane by lane.
@@ -20,6 +20,7 @@
 #include <cstring>
 #include <type_traits>
 
+#include "raster/fastpath/rectangle.hpp"
 #include "raster/fill/tile.hpp"
 
 namespace raster {
@@ -60,10 +61,10 @@ class RectangleBlocks {
           depth_(tile.draw.depth),
           color_(tile.draw.color),
           shader_(tile.wideShader),
-          x0_(std::max(r.box.x0, tile_.x0)),
-          x1_(std::min(r.box.x1, tile_.x1)),
-          y0_(std::max(r.box.y0, tile_.y0)),
-          y1_(std::min(r.box.y1, tile_.y1)),
+          x0_(intersect(r.box, tile_).x0),
+          x1_(intersect(r.box, tile_).x1),
+          y0_(intersect(r.box, tile_).y0),
+          y1_(intersect(r.box, tile_).y1),
           cx0_(x0_ & ~3),
           bx_(r.box.x0),
           by_(r.box.y0),

@@ -23,13 +23,17 @@
 #include <type_traits>
 #include <vector>
 
+#include "raster/bin_primitives.hpp"
+#include "raster/fastpath/block_coverage.hpp"
 #include "raster/fastpath/depth_bounds.hpp"
+#include "raster/fastpath/interpolate_wide.hpp"
 #include "raster/fastpath/merge_policy.hpp"
+#include "raster/fastpath/rectangle.hpp"
 #include "raster/fastpath/transparency.hpp"
 #include "raster/shader.hpp"
-#include "raster/stages/output_merger.hpp"
-#include "raster/stages/pixel_shader.hpp"
-#include "raster/stages/rasterizer.hpp"
+#include "raster/stages/7_rasterizer.hpp"
+#include "raster/stages/8_pixel_shader.hpp"
+#include "raster/stages/9_output_merger.hpp"
 #include "raster/statistics.hpp"
 #include "raster/trace_recorder.hpp"
 
@@ -207,7 +211,7 @@ class Tile : public FillTraits<PS, Real, Hooks, Depth, Color> {
 
     // The output merger for one shaded fragment: discard, late depth test (the reference pipeline),
     // depth write, blend.
-    FragmentFate mergeFragment(int32_t x, int32_t y, Real z, const Out& out) {
+    FragmentFate depthTestAndBlend(int32_t x, int32_t y, Real z, const Out& out) {
         if (isDiscarded(out)) {
             ++st.fragmentsDiscarded;
             return FragmentFate::Discarded;
@@ -227,11 +231,11 @@ class Tile : public FillTraits<PS, Real, Hooks, Depth, Color> {
         draw.color.write(x, y, colors);
         return FragmentFate::Written;
     }
-    // mergeFragment, recorded in the trace when tracing.
+    // depthTestAndBlend, recorded in the trace when tracing.
     void merge(int32_t x, int32_t y, Real z, const Out& out) {
         if constexpr (Hooks::kEnabled) {
             if (!hooks.active) {
-                mergeFragment(x, y, z, out);
+                depthTestAndBlend(x, y, z, out);
                 return;
             }
             glm::vec4 target0(0.0f);
@@ -240,9 +244,9 @@ class Tile : public FillTraits<PS, Real, Hooks, Depth, Color> {
                 target0 = detail::ColorTraits<std::decay_t<decltype(colors)>>::color(colors, 0);
             }
             const size_t record = hooks.open(x, y, float(z), !isDiscarded(out), target0);
-            hooks.close(record, mergeFragment(x, y, z, out));
+            hooks.close(record, depthTestAndBlend(x, y, z, out));
         } else {
-            mergeFragment(x, y, z, out);
+            depthTestAndBlend(x, y, z, out);
         }
     }
 

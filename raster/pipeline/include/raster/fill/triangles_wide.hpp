@@ -1,4 +1,4 @@
-// The eight-wide triangle path: a triangle's 4×2 blocks (stages/rasterizer.hpp's
+// The eight-wide triangle path: a triangle's 4×2 blocks (stages/7_rasterizer.hpp's
 // rasterizeTriangleBlocks) go through the depth test, the shader and the blend eight lanes at a time;
 // blocks on the tile's border go quad by quad through the plain steps (fill/tile.hpp). Taken where
 // the shader runs eight wide and the depth and colour policies have eight-wide forms
@@ -9,6 +9,8 @@
 #include <bit>
 #include <cstdint>
 
+#include "raster/fastpath/block_coverage.hpp"
+#include "raster/fastpath/interpolate_wide.hpp"
 #include "raster/fill/tile.hpp"
 
 namespace raster {

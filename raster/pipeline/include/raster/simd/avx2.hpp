@@ -107,7 +107,7 @@ template <int N>
     for (const int c : {3, 0, 1, 2})
         for (int n = 0; n < N; ++n) {
             const __m256i bytes = channel[n][c];
-            // t00, t01 as words: 1·t0 + 0·t1, one operation where a shift pair is two (commit a4281f8)
+            // t00, t01 as words: 1·t0 + 0·t1, one operation where a shift pair is two
             const __m256i low = _mm256_maddubs_epi16(_mm256_set1_epi16(1), bytes);
             const __m256i rows = _mm256_add_epi16(_mm256_maddubs_epi16(wa[n], bytes), low);
             const __m256 sum = _mm256_cvtepi32_ps(_mm256_madd_epi16(rows, wb[n]));
@@ -166,8 +166,8 @@ template <int N>
         const __m128i ia = _mm_slli_epi32(_mm_add_epi32(level, r0), 1);
         const __m128i ib =
             _mm_slli_epi32(_mm_add_epi32(level, _mm_sub_epi32(_mm_add_epi32(r1, one), _mm_sllv_epi32(one, k))), 1);
-        // Each span's (first, last) as one 8-byte load: gathers measured slower on Zen 5 (PERFORMANCE.md,
-        // commit 3ff7f95).
+        // Each span's (first, last) as one 8-byte load: gathers measured slower on Zen 5
+        // (docs/PERFORMANCE.md).
         auto spansAt = [&](__m128i index) {  // the four spans' firsts and lasts
             alignas(16) int32_t at[4];
             _mm_store_si128(reinterpret_cast<__m128i*>(at), index);

@@ -37,11 +37,11 @@
 
 #include <glm/glm.hpp>
 
-#include "raster/simd/base.hpp"
-#include "raster/simd/x86_128.hpp"
 #include "raster/simd/avx2.hpp"
 #include "raster/simd/avx512.hpp"
+#include "raster/simd/base.hpp"
 #include "raster/simd/portable.hpp"
+#include "raster/simd/x86_128.hpp"
 
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wpsabi"  // see base.hpp

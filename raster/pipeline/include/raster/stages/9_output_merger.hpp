@@ -1,4 +1,4 @@
-// The output merger's arithmetic, one fragment at a time: the depth test, the D3D11 blend equation, and
+// Stage 9, the output merger's arithmetic, one fragment at a time: the depth test, the D3D11 blend equation, and
 // the write of a blended colour into a render-target pixel with the target format's conversion rules.
 // The states themselves (and what each enumerator means) are in raster/states.hpp.
 //

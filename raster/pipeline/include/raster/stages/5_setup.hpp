@@ -69,7 +69,7 @@ struct CoverageTriangle {
     double x[3], y[3];
 };
 // Whether the triangle covers pixel (px, py)'s centre. The library's answer is
-// coversPixelCentre (stages/rasterizer.hpp), which applies the rules of this file and of
+// coversPixelCentre (stages/7_rasterizer.hpp), which applies the rules of this file and of
 // TriangleSetup: snap each coordinate to 16.8 fixed point (X = nearbyint(256·x), ties to even);
 // take the centre in the same units, (256·px + 128, 256·py + 128); order the vertices clockwise on
 // screen (swap vertices 1 and 2 when twice the signed area is negative); the centre is covered when
@@ -82,6 +82,18 @@ using CoverageTest = bool (*)(const CoverageTriangle& triangle, int32_t px, int3
 // Pixels whose centres lie within [lo, hi] (16.8 coordinates).
 inline int32_t firstPixel(int32_t lo) { return floorDiv(int64_t(lo) - kSubpixelHalf + kSubpixelOne - 1, kSubpixelOne); }
 inline int32_t lastPixel(int32_t hi) { return floorDiv(int64_t(hi) - kSubpixelHalf, kSubpixelOne); }
+
+// Pixel p's centre, p + ½, in 16.8 fixed point.
+inline int64_t pixelCentre(int32_t p) { return int64_t(p) * kSubpixelOne + kSubpixelHalf; }
+
+// The edge function of the directed edge (x0, y0) → (x1, y1) at the point (px, py), every coordinate
+// in 16.8 fixed point: (x1 − x0)·(py − y0) − (y1 − y0)·(px − x0), in 16.16 units, exact in int64.
+// It is twice the signed area of the triangle (x0, y0), (x1, y1), (px, py): positive when the point
+// lies on the inner side of a clockwise triangle's edge (y grows downwards). Setup's area, the
+// rasteriser's coverage and the binner's tile test all evaluate this one function.
+inline int64_t edgeFunction(int64_t x0, int64_t y0, int64_t x1, int64_t y1, int64_t px, int64_t py) {
+    return (x1 - x0) * (py - y0) - (y1 - y0) * (px - x0);
+}
 
 // A triangle ready to rasterise. Vertices are ordered so that twice the signed area is positive;
 // edge k runs from vertex k to vertex k+1 and its edge function
@@ -105,18 +117,29 @@ struct TriangleSetup {
     bool frontFacing;
 };
 
+
 enum class SetupResult : uint8_t { Ok, Culled, Degenerate, NoPixels };
+
+// Face culling (D3D11): a triangle whose twice-signed area is positive is clockwise on screen and
+// front-facing, unless frontCounterClockwise; CullMode::Back removes back faces, Front front faces.
+// Triangles and billboard rectangles (fastpath/rectangle.hpp) are culled by these two.
+inline bool isFrontFacing(int64_t area2, const RasterizerState& rs) {
+    const bool clockwise = area2 > 0;
+    return rs.frontCounterClockwise ? !clockwise : clockwise;
+}
+inline bool isCulled(bool front_facing, CullMode mode) {
+    return (mode == CullMode::Back && !front_facing) || (mode == CullMode::Front && front_facing);
+}
 
 inline bool isTopLeft(int32_t dx, int32_t dy) { return dy < 0 || (dy == 0 && dx > 0); }
 
 inline SetupResult setupTriangle(const ScreenVertex (&s)[3], const uint32_t (&vertex)[3], uint32_t primitive_id,
                                  const RasterizerState& rs, const PixelRect& clip, TriangleSetup& t) {
-    int64_t area2 = int64_t(s[1].x - s[0].x) * (s[2].y - s[0].y) - int64_t(s[1].y - s[0].y) * (s[2].x - s[0].x);
+    const int64_t area2 = edgeFunction(s[0].x, s[0].y, s[1].x, s[1].y, s[2].x, s[2].y);
     if (area2 == 0) return SetupResult::Degenerate;
-    const bool clockwise = area2 > 0;  // y grows downwards on screen
-    t.frontFacing = rs.frontCounterClockwise ? !clockwise : clockwise;
-    if ((rs.cullMode == CullMode::Back && !t.frontFacing) || (rs.cullMode == CullMode::Front && t.frontFacing))
-        return SetupResult::Culled;
+    const bool clockwise = area2 > 0;
+    t.frontFacing = isFrontFacing(area2, rs);
+    if (isCulled(t.frontFacing, rs.cullMode)) return SetupResult::Culled;
     const int order[3] = {0, clockwise ? 1 : 2, clockwise ? 2 : 1};
     for (int k = 0; k < 3; ++k) {
         const ScreenVertex& v = s[order[k]];
@@ -187,83 +210,6 @@ inline bool setupLine(const ScreenVertex (&s)[2], const uint32_t (&vertex)[2], u
     l.box.y0 = std::max(clip.y0, floorDiv(std::min(l.y[0], l.y[1]), kSubpixelOne) - 1);
     l.box.y1 = std::min(clip.y1, floorDiv(std::max(l.y[0], l.y[1]), kSubpixelOne) + 1);
     return !l.box.empty();
-}
-
-// A camera-facing billboard, as the lecture's gsBillboard opens it in clip space, is a strip of two
-// triangles (v0, v1, v2), (v1, v3, v2) whose corners share x and y pairwise after snapping, with one
-// z and one w. Such a strip is set up once as a rectangle: it covers exactly the pixels the two
-// triangles would (by the top-left rule: centres on the left and top edges in, on the right and
-// bottom edges out; the shared diagonal belongs to one triangle, so the union is the rectangle),
-// with one depth, and since w is constant its perspective-correct attributes are affine in screen
-// space: value(x, y) = base + (x − x0)·stepX + (y − y0)·stepY, all three precomputed in double.
-// Only strips whose attributes satisfy a0 + a3 = a1 + a2 exactly (one plane for both triangles)
-// qualify; anything else is drawn as two triangles.
-struct RectSetup {
-    PixelRect box;       // covered pixels, inside the clip rectangle
-    float z;
-    uint32_t vertex;     // base, stepX, stepY: three records in the chunk's vertex pool
-    uint32_t primitiveId;
-};
-
-// Tries to set up the strip v[0..3] as a rectangle. On success fills r (r.vertex left to the
-// caller) and base/step_x/step_y, and returns true; `culled` tells a rectangle removed by culling.
-template <class V>
-bool setupRectangle(const V* const (&v)[4], const ScreenVertex (&s)[4], uint32_t primitive_id,
-                    const RasterizerState& rs, const PixelRect& clip, RectSetup& r, V& base, V& step_x, V& step_y,
-                    bool& culled) {
-    culled = false;
-    for (int i = 1; i < 4; ++i)
-        if (v[i]->position.z != v[0]->position.z || v[i]->position.w != v[0]->position.w) return false;
-    // Which corner lies along x and which along y from v0 (the other pair is the diagonal).
-    int cx, cy;
-    if (s[0].x == s[1].x && s[2].x == s[3].x && s[0].y == s[2].y && s[1].y == s[3].y)
-        cx = 2, cy = 1;
-    else if (s[0].x == s[2].x && s[1].x == s[3].x && s[0].y == s[1].y && s[2].y == s[3].y)
-        cx = 1, cy = 2;
-    else
-        return false;
-    const int64_t width = int64_t(s[cx].x) - s[0].x, height = int64_t(s[cy].y) - s[0].y;
-    if (width == 0 || height == 0) return false;
-    const float* a0 = asFloats(*v[0]);
-    const float* a1 = asFloats(*v[1]);
-    const float* a2 = asFloats(*v[2]);
-    const float* a3 = asFloats(*v[3]);
-    for (uint32_t i = 4; i < kVertexFloats<V>; ++i)
-        if (a0[i] + a3[i] != a1[i] + a2[i]) return false;
-    // Triangle (v0, v1, v2)'s winding decides facing for both (the strip keeps winding).
-    const int64_t area2 =
-        int64_t(s[1].x - s[0].x) * (s[2].y - s[0].y) - int64_t(s[1].y - s[0].y) * (s[2].x - s[0].x);
-    const bool clockwise = area2 > 0;
-    const bool front = rs.frontCounterClockwise ? !clockwise : clockwise;
-    if ((rs.cullMode == CullMode::Back && !front) || (rs.cullMode == CullMode::Front && front)) {
-        culled = true;
-        return true;
-    }
-    const int32_t xl = std::min(s[0].x, s[cx].x), xr = std::max(s[0].x, s[cx].x);
-    const int32_t yt = std::min(s[0].y, s[cy].y), yb = std::max(s[0].y, s[cy].y);
-    r.box = {std::max(clip.x0, firstPixel(xl)), std::max(clip.y0, firstPixel(yt)),
-             std::min(clip.x1, firstPixel(xr) - 1), std::min(clip.y1, firstPixel(yb) - 1)};
-    r.z = s[0].z;
-    r.primitiveId = primitive_id;
-    // Pixel centre (box.x0 + ½, box.y0 + ½) relative to v0, in pixels.
-    const double fx = (double(r.box.x0) * kSubpixelOne + kSubpixelHalf - s[0].x) / double(width);
-    const double fy = (double(r.box.y0) * kSubpixelOne + kSubpixelHalf - s[0].y) / double(height);
-    const double px = double(kSubpixelOne) / double(width), py = double(kSubpixelOne) / double(height);
-    const float* ax = asFloats(*v[cx]);
-    const float* ay = asFloats(*v[cy]);
-    float* b = asFloats(base);
-    float* dx = asFloats(step_x);
-    float* dy = asFloats(step_y);
-    for (uint32_t i = 4; i < kVertexFloats<V>; ++i) {
-        const double ex = double(ax[i]) - a0[i], ey = double(ay[i]) - a0[i];
-        b[i] = float(a0[i] + ex * fx + ey * fy);
-        dx[i] = float(ex * px);
-        dy[i] = float(ey * py);
-    }
-    base.position = glm::vec4(float(r.box.x0) + 0.5f, float(r.box.y0) + 0.5f, r.z, v[0]->position.w);
-    step_x.position = glm::vec4(1, 0, 0, 0);
-    step_y.position = glm::vec4(0, 1, 0, 0);
-    return true;
 }
 
 }  // namespace raster

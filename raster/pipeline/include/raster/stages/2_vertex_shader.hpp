@@ -8,7 +8,7 @@
 
 #include "raster/input_layout.hpp"
 #include "raster/shader.hpp"
-#include "raster/stages/input_assembler.hpp"
+#include "raster/stages/1_input_assembler.hpp"
 #include "raster/thread_pool.hpp"
 
 namespace raster {
