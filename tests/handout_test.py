@@ -13,7 +13,8 @@ library's own lecture code, listed below, which are reported.
 
 build: unpacks raster-course.tar.gz into <work-dir>, configures and builds its raster as the README's
 commands do (.ci/build, without .ci/setup's packages; through ccache where this build used it), then
-checks: `raster render <lab>` writes the lab's picture; `raster grade labs --public` grades every lab
+checks: `raster render <lab>` writes the lab's picture; `raster view <lab>`'s J compares with the
+shipped image of the solution; `raster grade labs --public` grades every lab
 below full marks as handed out and a solved lab (generate.py --solved) at full marks; every shipped
 reference image is, byte for byte, what this build's `raster render <lab>@solution` writes at the
 scene's options.
@@ -276,6 +277,11 @@ def build(source, build_dir, cmake, work):
     run([raster, "render", "billboards", "--out-dir", os.path.join(work, "out")], cwd=root)
     if not os.path.isfile(os.path.join(work, "out", "billboards.png")):
         problems.append("raster render billboards wrote no billboards.png")
+    # The viewer's J compares with the shipped image of the solution (SDL's offscreen driver).
+    said, _ = run([raster, "view", "billboards", "--headless", "--script", "j"], cwd=root)
+    shipped = os.path.join(root, "labs", "billboards", "reference", "billboards@solution.png")
+    if not re.search(r"difference from %s: [0-9]+ of 921600 pixels differ" % re.escape(shipped), said):
+        problems.append("raster view billboards's J does not compare with %s: %s" % (shipped, said[-800:]))
     # As handed out: every lab below full marks, against the shipped images.
     scores, seconds = grade(raster, os.path.join(root, "labs"), os.path.join(work, "grade-labs"))
     print("handout_test: grade labs --public: %s (%.1f s)" % (scores, seconds))
