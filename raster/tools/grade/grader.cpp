@@ -382,7 +382,6 @@ LabBuild buildLab(const LabFile& source, const std::string& lab, const std::stri
     return build;
 }
 
-
 std::vector<std::string> runnerArgs(const LabBuild& build, const std::string& lab, const GradedScene& scene,
                                     const std::string& png, const GraderOptions& options) {
     std::vector<std::string> argv = {build.runner, "--scene", lab, "--out", png};
