@@ -20,6 +20,7 @@ struct Command {
 Command addBench(CLI::App& app);
 Command addGrade(CLI::App& app);
 Command addMicrobench(CLI::App& app);
+Command addReferences(CLI::App& app);
 Command addRender(CLI::App& app);
 Command addTrace(CLI::App& app);
 Command addView(CLI::App& app);

@@ -102,4 +102,25 @@ Command addGrade(CLI::App& app) {
     return {command, [args] { return runGrade(*args); }};
 }
 
+// raster references <out-root>: the expected images a handout ships (docs/HANDOUT.md), written by
+// this program's compiled solutions.
+Command addReferences(CLI::App& app) {
+    CLI::App* command = addCommand(app, "references",
+                                   "write the handout's reference images: each lab's solution at its public "
+                                   "scenes (out/labs/<lab>/reference/<scene>.png) and at its defaults "
+                                   "(<lab>@solution.png)");
+    auto out = std::make_shared<std::string>();
+    auto root = std::make_shared<std::string>(RASTER_GRADE_ROOT);
+    command->add_option("out", *out, "the folder that gets labs/<lab>/reference/")->required();
+    command
+        ->add_option("--grading-root", *root, "the folder whose labs/ hold the public grading declarations")
+        ->check(CLI::ExistingDirectory)
+        ->capture_default_str();
+    return {command, [out, root] {
+                const std::vector<std::string> written = grade::writeReferenceImages(*root, *out);
+                std::printf("%zu reference images in %s/labs/<lab>/reference/\n", written.size(), out->c_str());
+                return 0;
+            }};
+}
+
 }  // namespace raster::tools

@@ -88,7 +88,8 @@ int main(int argc, char** argv) {
     app.require_subcommand(0, 1);
     app.set_version_flag("--version", versionText());
     const std::vector<raster::tools::Command> commands = {
-        raster::tools::addBench(app), raster::tools::addGrade(app), raster::tools::addMicrobench(app), raster::tools::addRender(app),
+        raster::tools::addBench(app), raster::tools::addGrade(app), raster::tools::addMicrobench(app), raster::tools::addReferences(app),
+        raster::tools::addRender(app),
         raster::tools::addTrace(app), raster::tools::addView(app)};
     app.add_subcommand("help", "this text");
     app.footer(

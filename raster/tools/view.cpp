@@ -21,7 +21,8 @@ std::string about() {
         "--solution: what K shows and J compares the frame with - reference (this scene through the\n"
         "reference pipeline), another scene (e.g. a lab's solution) at the same size, camera and step,\n"
         "or a PNG of the frame's size; rendered only while K or J is on. A lab's default is its solution\n"
-        "(<lab>@solution), when solutions/ was built.\n"
+        "(<lab>@solution), when solutions/ was built, else the handout's image of it at the lab's\n"
+        "defaults (labs/<lab>/reference/<lab>@solution.png).\n"
         "Animated scenes (fire) play in the window from the start; --paused or --headless start them\n"
         "paused (Space plays, . and , step a frame of 1/60 s, so a script's frames are exact).\n"
         "keys:";

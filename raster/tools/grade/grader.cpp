@@ -382,18 +382,6 @@ LabBuild buildLab(const LabFile& source, const std::string& lab, const std::stri
     return build;
 }
 
-// The solution's image of a scene, rendered by this program.
-ImageRgba8 renderExpected(const std::string& lab, const SceneOptions& options, Trace* trace) {
-    std::unique_ptr<Scene> scene = makeScene(lab + "@solution", options);
-    Context context;
-    RenderTarget color(options.width, options.height);
-    DepthTarget depth(options.width, options.height);
-    context.resetFrameStatistics();
-    if (trace) context.setTrace(trace);
-    scene->render(context, color, depth);
-    return {options.width, options.height, color.toRgba8()};
-}
-
 std::vector<std::string> runnerArgs(const LabBuild& build, const std::string& lab, const GradedScene& scene,
                                     const std::string& png, const GraderOptions& options) {
     std::vector<std::string> argv = {build.runner, "--scene", lab, "--out", png};
@@ -475,8 +463,12 @@ SceneResult gradeScene(const LabBuild& build, const std::string& lab, const Grad
     SceneResult result{scene.name,    scene.number, 0, scene.points, sceneVisibility(scene.isPublic),
                        Verdict::Error};
     result.explanation = scene.comparison.describe();
-    if (!findRegisteredScene(lab + "@solution")) {
-        result.reason = "no expected image: this raster was built without solutions/" + lab + "/";
+    // The solution compiled in (a lecturer's build), else the handout's image of it (public scenes).
+    const bool solved = findRegisteredScene(lab + "@solution") != nullptr;
+    const std::string reference = referenceImagePath(options.gradingRoot, lab, scene.name);
+    if (!solved && !fs::is_regular_file(reference)) {
+        result.reason = "no expected image: this raster was built without solutions/" + lab + "/, and " +
+                        reference + " is not there";
         return result;
     }
     if (build.runner.empty()) {
@@ -497,7 +489,7 @@ SceneResult gradeScene(const LabBuild& build, const std::string& lab, const Grad
         result.seconds = secondsSince(start);
         return result;
     }
-    const ImageRgba8 expected = renderExpected(lab, scene.options, nullptr);
+    const ImageRgba8 expected = solved ? renderExpected(lab, scene.options, nullptr) : readImageRgba8(reference);
     if (yours.width != expected.width || yours.height != expected.height) {
         result.verdict = Verdict::Fail;
         result.diagnosis = "the image is " + std::to_string(yours.width) + "x" +
@@ -512,7 +504,10 @@ SceneResult gradeScene(const LabBuild& build, const std::string& lab, const Grad
     result.verdict = c.passed ? Verdict::Pass : Verdict::Fail;
     result.score = c.passed ? scene.points : 0;
     writeImages(result, yours, expected, &c, out_dir, scene.name);
-    if (!c.passed) diagnoseScene(result, build, lab, scene, largestFailingRegion(c), options);
+    if (!c.passed && solved) diagnoseScene(result, build, lab, scene, largestFailingRegion(c), options);
+    if (!c.passed && !solved)
+        result.diagnosis = "no diagnosis: this copy has the solution's image (labs/" + lab +
+                           "/reference/), not its pipeline trace";
     result.seconds = secondsSince(start);
     return result;
 }
@@ -635,6 +630,40 @@ GraderOptions defaultGraderOptions() {
     o.buildLimits = {300, 300, 4 * kGiB, 64, 256 * kMiB, 1 * kMiB, 1 * kMiB};
     o.renderLimits = {30, 30, 2 * kGiB, 64, 256 * kMiB, 1 * kMiB, 1 * kMiB};
     return o;
+}
+
+ImageRgba8 renderExpected(const std::string& lab, const SceneOptions& options, Trace* trace) {
+    std::unique_ptr<Scene> scene = makeScene(lab + "@solution", options);
+    Context context;
+    RenderTarget color(options.width, options.height);
+    DepthTarget depth(options.width, options.height);
+    context.resetFrameStatistics();
+    if (trace) context.setTrace(trace);
+    scene->render(context, color, depth);
+    return {options.width, options.height, color.toRgba8()};
+}
+
+std::string referenceImagePath(const std::string& root, const std::string& lab, const std::string& scene) {
+    return (fs::path(root) / "labs" / lab / "reference" / (scene + ".png")).string();
+}
+
+std::vector<std::string> writeReferenceImages(const std::string& root, const std::string& out_root) {
+    std::vector<std::string> written;
+    const auto write = [&](const std::string& path, const ImageRgba8& image) {
+        fs::create_directories(fs::path(path).parent_path());
+        writePngRgba8(path, image.width, image.height, image.pixels);
+        written.push_back(path);
+    };
+    for (const LabGrading& lab : discoverLabs(root, true)) {
+        RASTER_REQUIRE(findRegisteredScene(lab.lab + "@solution"), InvalidState,
+                       "no " + lab.lab + "@solution in this raster: it was built without solutions/" +
+                           lab.lab + "/");
+        for (const GradedScene& scene : lab.scenes)
+            write(referenceImagePath(out_root, lab.lab, scene.name), renderExpected(lab.lab, scene.options, nullptr));
+        write(referenceImagePath(out_root, lab.lab, lab.lab + "@solution"),
+              renderExpected(lab.lab, SceneOptions{}, nullptr));
+    }
+    return written;
 }
 
 GradeRun gradeSubmission(const std::string& submission, const GraderOptions& options) {

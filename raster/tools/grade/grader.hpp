@@ -29,6 +29,8 @@
 #include "grade/grading.hpp"
 #include "grade/report.hpp"
 #include "grade/sandbox.hpp"
+#include "raster/image_io.hpp"
+#include "raster/trace.hpp"
 
 namespace raster::grade {
 
@@ -66,6 +68,22 @@ GraderOptions defaultGraderOptions();
 // Throws Error for what stops the whole run (no such folder, a bad declaration or toolchain file);
 // everything the submission does is a scene's verdict.
 GradeRun gradeSubmission(const std::string& submission, const GraderOptions& options);
+
+// The solution's image of a scene, rendered in-process by the <lab>@solution compiled into this
+// program (Error(InvalidArgument) where it was built without it); the trace, when given, records it.
+ImageRgba8 renderExpected(const std::string& lab, const SceneOptions& options, Trace* trace);
+
+// A handout's reference image of a scene: <root>/labs/<lab>/reference/<scene>.png. A handout (built
+// without solutions/, docs/HANDOUT.md) ships one per public scene, and <lab>@solution.png, the
+// solution at its defaults (what the viewer's K shows); the grader compares with it where this
+// program has no <lab>@solution, and cannot then diagnose.
+std::string referenceImagePath(const std::string& root, const std::string& lab, const std::string& scene);
+
+// Writes the reference images of every lab that declares its grading under `root` (public scenes
+// only, at their options, and <lab>@solution at the defaults) beneath out_root, as
+// referenceImagePath(out_root, ...) names them; returns their paths. Throws Error(InvalidState) for a
+// lab whose solution this program lacks.
+std::vector<std::string> writeReferenceImages(const std::string& root, const std::string& out_root);
 
 // Writes results.json, junit.xml, report.html into options.outDir (created) and returns nothing: the
 // PNGs are already there (gradeSubmission writes them).

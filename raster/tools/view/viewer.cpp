@@ -2,10 +2,15 @@
 
 #include <SDL.h>
 
+#ifndef RASTER_SOURCE_ROOT
+#error "the build defines RASTER_SOURCE_ROOT: the source tree holding labs/"
+#endif
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <optional>
 
 #include "camera.hpp"
@@ -71,12 +76,23 @@ std::string keyName(const SDL_Keysym& key, bool fly) {
     }
 }
 
+// A handout (built without solutions/, docs/HANDOUT.md) ships each lab's solution as an image at the
+// lab's defaults, labs/<lab>/reference/<lab>@solution.png: there, what K shows and J compares with
+// unless told otherwise. Empty where there is none (not a lab, or solutions/ present).
+std::string handoutReference(const std::string& scene) {
+    const std::string path =
+        std::string(RASTER_SOURCE_ROOT) + "/labs/" + scene + "/reference/" + scene + "@solution.png";
+    std::error_code ec;
+    return std::filesystem::is_regular_file(path, ec) ? path : std::string();
+}
+
 }  // namespace
 
 Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
     // A bad --solution fails here, before SDL starts. A lab is compared with its solution unless
     // told otherwise.
     if (options_.solution.empty()) options_.solution = solutionSceneOf(options_.scene);
+    if (options_.solution.empty()) options_.solution = handoutReference(options_.scene);
     solution_ = parseSolution(options_.solution);
     if (solution_.kind == SolutionSource::Kind::Image) solution_image_ = readImageRgba8(solution_.name);
     camera_ = options_.sceneOptions.camera.value_or(defaultCamera(options_.scene));
