@@ -1,8 +1,10 @@
 // The `cloud` scene: a voxel cloud (media::makeCloudGrid, or a volume file) lit by the sun with single
 // scattering, shadow rays and ambient light (raster/media/cloud_march.hpp), over the fog scene's ground
-// and sky. The ground is the fog scene itself, drawn first (its own draws and state); the cloud is then
-// one full-screen draw whose pixel shader marches each pixel's view ray (raster/shaders/cloud.hpp),
-// blended over it premultiplied.
+// and sky. The ground is the fog scene's world (FogGround: its draws and state), drawn first with the
+// fog scene's ground shader made to take the cloud's shadow (shaders::PsCloudGround: the sun attenuated
+// by the cloud's transmittance along each surface point's shadow ray); the cloud is then one
+// full-screen draw whose pixel shader marches each pixel's view ray (raster/shaders/cloud.hpp), blended
+// over it premultiplied.
 //
 // Depth: the cloud is drawn without a depth test, over whatever the ground pass left. That is correct
 // wherever the cloud's box lies in front of the surface each ray hits: the box's bottom (kCloudBottom)
@@ -17,6 +19,7 @@
 #include <optional>
 #include <string>
 
+#include "fog_ground.hpp"
 #include "raster/pipeline_impl.hpp"
 #include "raster/shaders/cloud.hpp"
 #include "scene_list.hpp"
@@ -62,7 +65,7 @@ SceneOptions groundOptions(const SceneOptions& o) {
 
 class CloudScene final : public Scene {
 public:
-    explicit CloudScene(const SceneOptions& o) : ground_(makeFogScene(groundOptions(o))) {
+    explicit CloudScene(const SceneOptions& o) : ground_(groundOptions(o)) {
         media::VoxelGrid grid = cloudGrid(o);
         const glm::ivec3 dims = grid.dims();
         const float longest = float(std::max({dims.x, dims.y, dims.z}));
@@ -82,6 +85,12 @@ public:
         if (o.fogSigma) ps_.fog.sigma = *o.fogSigma;
         if (o.fogSource) ps_.fog.q = *o.fogSource;
         if (o.fogFalloff) ps_.fog.b = -*o.fogFalloff;
+        RASTER_CHECK(ground_.psFog.light == ps_.light.toLight);  // the ground's sun is the cloud's
+        ground_ps_.ground = ground_.psFog;
+        ground_ps_.origin = ps_.origin;
+        ground_ps_.voxelsPerMetre = voxels_per_metre;
+        ground_ps_.volume = &volume_;
+        ground_ps_.settings = ps_.settings;
     }
     std::string_view name() const override { return "cloud"; }
 
@@ -112,7 +121,7 @@ public:
     }
 
     void render(Context& context, RenderTarget& color, DepthTarget& depth) override {
-        ground_->render(context, color, depth);
+        ground_.render(context, color, depth, ground_ps_);
         triangle_.bind(context);
         BlendState over;
         over.renderTarget[0] = {true, Blend::One, Blend::InvSrcAlpha, BlendOp::Add,
@@ -122,8 +131,9 @@ public:
     }
 
 private:
-    std::unique_ptr<Scene> ground_;
+    FogGround ground_;
     media::CloudVolume volume_;
+    shaders::PsCloudGround ground_ps_;
     FullScreenTriangle triangle_;
     shaders::VsMediaRay vs_;
     shaders::PsCloudMarch ps_;

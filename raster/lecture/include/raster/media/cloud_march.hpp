@@ -153,24 +153,44 @@ void forCloudSamples(const CloudVolume& v, bool skip, const glm::vec3& o, const 
         if (!visit(i)) return;
 }
 
-// τ_l from x to the box's exit towards the light (header), stopped once it exceeds the settings' depth:
-// Σ μ_j·Δl in j's order over the samples skipping keeps.
-inline float cloudShadowDepth(const CloudVolume& v, const VolumeLight& light, const glm::vec3& inv_light,
-                              const CloudMarchSettings& s, const glm::vec3& x, MarchResult& result) {
-    const float exit = exitDistance(v.box, x, light.toLight, inv_light);
-    if (!(exit > 0.0f)) return 0.0f;
-    const uint32_t m = std::max(1u, uint32_t(std::ceil(exit / s.shadowStep)));
-    const float dl = exit / float(m);
+// τ along the ray x + t·l over [t0, t1] (l unit length; voxel units): M = ⌈(t1 − t0)/shadowStep⌉ steps
+// of Δl = (t1 − t0)/M sampled at their midpoints, Σ μ_j·Δl in j's order over the samples skipping keeps,
+// stopped once it exceeds the settings' depth (header: shadow termination).
+inline float cloudOpticalDepth(const CloudVolume& v, const CloudMarchSettings& s, const glm::vec3& x,
+                               const glm::vec3& l, float t0, float t1, MarchResult& result) {
+    const uint32_t m = std::max(1u, uint32_t(std::ceil((t1 - t0) / s.shadowStep)));
+    const float dl = (t1 - t0) / float(m);
     float tau = 0.0f;
-    forCloudSamples(v, s.skip, x, light.toLight, 0.0f, dl, m, [&](uint32_t j) {
+    forCloudSamples(v, s.skip, x, l, t0, dl, m, [&](uint32_t j) {
         ++result.densityEvaluations;
-        tau += v.extinction(x + light.toLight * ((float(j) + 0.5f) * dl)) * dl;
+        tau += v.extinction(x + l * (t0 + (float(j) + 0.5f) * dl)) * dl;
         return !(tau > s.shadowMaxDepth);
     });
     return tau;
 }
 
+// τ_l from x to the box's exit towards the light (header), stopped once it exceeds the settings' depth.
+inline float cloudShadowDepth(const CloudVolume& v, const VolumeLight& light, const glm::vec3& inv_light,
+                              const CloudMarchSettings& s, const glm::vec3& x, MarchResult& result) {
+    const float exit = exitDistance(v.box, x, light.toLight, inv_light);
+    if (!(exit > 0.0f)) return 0.0f;
+    return cloudOpticalDepth(v, s, x, light.toLight, 0.0f, exit, result);
+}
+
 }  // namespace detail
+
+// The transmittance e^{−τ} from a point x anywhere (inside the box or outside it: a surface under the
+// cloud) towards the light along l (unit length), through the cloud: the shadow ray clipped to the
+// box, marched as the view ray's shadow rays are (majorant skipping, shadow termination). Exactly 1
+// where the ray misses the box: nothing evaluated.
+inline float cloudShadowTransmittance(const CloudVolume& v, const CloudMarchSettings& s, const glm::vec3& x,
+                                      const glm::vec3& l) {
+    const auto [t_near, t_far] = slabInterval(v.box, x, l);
+    const float t0 = std::max(t_near, 0.0f);
+    if (!(t_far > t0)) return 1.0f;
+    MarchResult unused;
+    return raster::exp(-detail::cloudOpticalDepth(v, s, x, l, t0, t_far, unused));
+}
 
 // The radiance and transmittance of one view ray over its stretch [s0, s1] inside the box (voxel units,
 // header); the caller clips: s0 = max(s_near, 0), s1 = s_far of slabInterval(v.box, eye, d).
