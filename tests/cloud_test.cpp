@@ -2,7 +2,9 @@
 // small grid: empty-space skipping gives the march's bits ray by ray, the terminations stay under
 // their bound, the volume's memory is its voxels plus little, the scene renders the same bits at 1, 2
 // and 8 threads and leaves the ground as it was where the cloud's box is not, a raw file of the
-// generated cloud renders as the generated cloud, and a bad file is named.
+// generated cloud renders as the generated cloud, and a bad file is named. The ground under the cloud
+// (shaders::PsCloudGround) is darkened by the cloud's transmittance towards the sun, and is the fog
+// ground's bits where its shadow ray misses the cloud.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -12,6 +14,7 @@
 #include <vector>
 
 #include "raster/media/cloud_march.hpp"
+#include "raster/shaders/cloud.hpp"
 #include "raster/pipeline.hpp"
 #include "raster/scenes.hpp"
 
@@ -169,4 +172,92 @@ TEST(CloudScene, RawFileOfTheGeneratedCloudRendersTheSame) {
     std::filesystem::remove(path);
     file.volume = path + ".nvdb";
     EXPECT_THROW(makeScene("cloud", file), Error);
+}
+
+namespace {
+
+// The test volume as the ground's cloud, voxels = world metres (origin 0, one voxel a metre), the fog
+// scene's ground shading with its sun along testLight's direction.
+shaders::PsCloudGround testGround(const CloudVolume& v) {
+    shaders::PsCloudGround ps;
+    ps.volume = &v;
+    ps.ground.light = testLight().toLight;
+    ps.ground.eye = {16.0f, 20.0f, 90.0f};
+    return ps;
+}
+
+shaders::LitVertex groundVertex(const glm::vec3& p, const glm::vec3& n) { return {glm::vec4(0.0f), p, n}; }
+
+// e^{−τ} along x + t·l by the definition: the midpoint rule in steps of 1/64 voxel over the whole
+// box, no skipping, no termination, in double.
+double referenceTransmittance(const CloudVolume& v, const glm::vec3& x, const glm::vec3& l) {
+    const auto [t_near, t_far] = slabInterval(v.box, x, l);
+    double tau = 0.0;
+    const double dt = 1.0 / 64.0;
+    for (double t = std::max(t_near, 0.0f) + dt / 2; t < t_far; t += dt) tau += v.extinction(x + l * float(t)) * dt;
+    return std::exp(-tau);
+}
+
+}  // namespace
+
+TEST(CloudGround, UnderTheCloudTheSunIsAttenuatedByItsTransmittance) {
+    const CloudVolume v = testVolume();
+    shaders::PsCloudGround ps = testGround(v);
+    ps.ground.fog.sigma = glm::vec3(0.0f), ps.ground.fog.q = glm::vec3(0.0f);  // no fog: L = albedo·level
+    const glm::vec3 l = ps.ground.light, up(0.0f, 1.0f, 0.0f);
+    // Under the cloud's middle (the point whose shadow ray passes through the box's centre) and far
+    // from it, on a ground facing up: L = albedo·(ambient + (1 − ambient)·(n·l)·V).
+    const glm::vec3 under = glm::vec3(kVoxels * 0.5f) - l * float(2 * kVoxels), far = under + glm::vec3(100, 0, 0);
+    const float lambert = glm::dot(up, l);
+    const float v_march = cloudShadowTransmittance(v, ps.settings, under, l);
+    const double v_ref = referenceTransmittance(v, under, l);
+    EXPECT_LT(v_ref, 0.5) << "the point should lie in the cloud's shadow";
+    EXPECT_NEAR(v_march, v_ref, 0.02) << "the march's shadow ray against the definition";
+    EXPECT_EQ(cloudShadowTransmittance(v, ps.settings, far, l), 1.0f);
+    const glm::vec4 lit_under = ps(groundVertex(under, up)), lit_far = ps(groundVertex(far, up));
+    const float a = ps.ground.ambient;
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_FLOAT_EQ(lit_far[c], ps.ground.albedo[c] * (a + (1.0f - a) * lambert));
+        EXPECT_FLOAT_EQ(lit_under[c], ps.ground.albedo[c] * (a + (1.0f - a) * lambert * v_march));
+        EXPECT_LT(lit_under[c], lit_far[c]);
+    }
+    // The eight-wide shader gives each lane the scalar's bits.
+    Float8 x, y, z;
+    for (int lane = 0; lane < 8; ++lane) {
+        const glm::vec3 p = under + glm::vec3(float(lane) * 2.5f, 0.0f, -float(lane));
+        x.set(lane, p.x), y.set(lane, p.y), z.set(lane, p.z);
+    }
+    const shaders::LitVertexT<Float8> wide{glm::vec<4, Float8>(Float8(0.0f)), {x, y, z},
+                                           {Float8(0.0f), Float8(1.0f), Float8(0.0f)}};
+    const glm::vec<4, Float8> out = ps(wide);
+    for (int lane = 0; lane < 8; ++lane) {
+        const glm::vec4 one = ps(groundVertex({x[lane], y[lane], z[lane]}, up));
+        for (int c = 0; c < 4; ++c) EXPECT_EQ(out[c][lane], one[c]) << "lane " << lane;
+    }
+}
+
+TEST(CloudGround, WhereTheShadowRayMissesTheCloudItIsTheFogGroundsBits) {
+    const CloudVolume v = testVolume();
+    shaders::PsCloudGround ps = testGround(v);
+    ps.ground.fog.height = false;  // constant fog (the height fog 40 voxels below y = 0 is opaque)
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    int missed = 0, hit = 0;
+    for (int i = 0; i < 4000; ++i) {
+        // Around the point under the cloud's middle (the test above), 2 box sides below the box.
+        const glm::vec3 p = glm::vec3(kVoxels * 0.5f) - ps.ground.light * float(2 * kVoxels) +
+                            glm::vec3(u(rng) * 1.5f, u(rng) * 0.05f, u(rng) * 1.5f) * float(kVoxels);
+        const glm::vec3 n = glm::normalize(glm::vec3(u(rng), u(rng) + 0.5f, u(rng)));
+        const auto [t_near, t_far] = slabInterval(v.box, p, ps.ground.light);
+        const bool misses = !(t_far > std::max(t_near, 0.0f)) || glm::dot(n, ps.ground.light) <= 0.0f;
+        const glm::vec4 cloud = ps(groundVertex(p, n)), fog = ps.ground(groundVertex(p, n));
+        if (misses) {
+            ++missed;
+            ASSERT_EQ(std::memcmp(&cloud, &fog, sizeof cloud), 0) << "at (" << p.x << ", " << p.y << ", " << p.z << ")";
+        } else {
+            hit += cloud.x < fog.x;
+        }
+    }
+    EXPECT_GT(missed, 1000);
+    EXPECT_GT(hit, 100) << "some points should lie in the shadow";
 }
