@@ -2,7 +2,9 @@
 // small grid: empty-space skipping gives the march's bits ray by ray, the terminations stay under
 // their bound, the volume's memory is its voxels plus little, the scene renders the same bits at 1, 2
 // and 8 threads and leaves the ground as it was where the cloud's box is not, a raw file of the
-// generated cloud renders as the generated cloud, and a bad file is named.
+// generated cloud renders as the generated cloud, and a bad file is named. The ground under the cloud
+// (shaders::PsCloudGround) is darkened by the cloud's transmittance towards the sun, and is the fog
+// ground's bits where its shadow ray misses the cloud.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -12,6 +14,7 @@
 #include <vector>
 
 #include "raster/media/cloud_march.hpp"
+#include "raster/shaders/cloud.hpp"
 #include "raster/pipeline.hpp"
 #include "raster/scenes.hpp"
 
@@ -169,4 +172,221 @@ TEST(CloudScene, RawFileOfTheGeneratedCloudRendersTheSame) {
     std::filesystem::remove(path);
     file.volume = path + ".nvdb";
     EXPECT_THROW(makeScene("cloud", file), Error);
+}
+
+namespace {
+
+// The test volume as the ground's cloud, voxels = world metres (origin 0, one voxel a metre), the fog
+// scene's ground shading with its sun along testLight's direction.
+shaders::PsCloudGround testGround(const CloudVolume& v) {
+    shaders::PsCloudGround ps;
+    ps.volume = &v;
+    ps.ground.light = testLight().toLight;
+    ps.ground.eye = {16.0f, 20.0f, 90.0f};
+    return ps;
+}
+
+shaders::LitVertex groundVertex(const glm::vec3& p, const glm::vec3& n) { return {glm::vec4(0.0f), p, n}; }
+
+// e^{−τ} along x + t·l by the definition: the midpoint rule in steps of 1/64 voxel over the whole
+// box, no skipping, no termination, in double.
+double referenceTransmittance(const CloudVolume& v, const glm::vec3& x, const glm::vec3& l) {
+    const auto [t_near, t_far] = slabInterval(v.box, x, l);
+    double tau = 0.0;
+    const double dt = 1.0 / 64.0;
+    for (double t = std::max(t_near, 0.0f) + dt / 2; t < t_far; t += dt) tau += v.extinction(x + l * float(t)) * dt;
+    return std::exp(-tau);
+}
+
+}  // namespace
+
+TEST(CloudGround, UnderTheCloudTheSunIsAttenuatedByItsTransmittance) {
+    const CloudVolume v = testVolume();
+    shaders::PsCloudGround ps = testGround(v);
+    ps.ground.fog.sigma = glm::vec3(0.0f), ps.ground.fog.q = glm::vec3(0.0f);  // no fog: L = albedo·level
+    const glm::vec3 l = ps.ground.light, up(0.0f, 1.0f, 0.0f);
+    // Under the cloud's middle (the point whose shadow ray passes through the box's centre) and far
+    // from it, on a ground facing up: L = albedo·(ambient + (1 − ambient)·(n·l)·V).
+    const glm::vec3 under = glm::vec3(kVoxels * 0.5f) - l * float(2 * kVoxels), far = under + glm::vec3(100, 0, 0);
+    const float lambert = glm::dot(up, l);
+    const float v_march = cloudShadowTransmittance(v, ps.settings, under, l);
+    const double v_ref = referenceTransmittance(v, under, l);
+    EXPECT_LT(v_ref, 0.5) << "the point should lie in the cloud's shadow";
+    EXPECT_NEAR(v_march, v_ref, 0.02) << "the march's shadow ray against the definition";
+    EXPECT_EQ(cloudShadowTransmittance(v, ps.settings, far, l), 1.0f);
+    const glm::vec4 lit_under = ps(groundVertex(under, up)), lit_far = ps(groundVertex(far, up));
+    const float a = ps.ground.ambient;
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_FLOAT_EQ(lit_far[c], ps.ground.albedo[c] * (a + (1.0f - a) * lambert));
+        EXPECT_FLOAT_EQ(lit_under[c], ps.ground.albedo[c] * (a + (1.0f - a) * lambert * v_march));
+        EXPECT_LT(lit_under[c], lit_far[c]);
+    }
+    // The eight-wide shader gives each lane the scalar's bits.
+    Float8 x, y, z;
+    for (int lane = 0; lane < 8; ++lane) {
+        const glm::vec3 p = under + glm::vec3(float(lane) * 2.5f, 0.0f, -float(lane));
+        x.set(lane, p.x), y.set(lane, p.y), z.set(lane, p.z);
+    }
+    const shaders::LitVertexT<Float8> wide{glm::vec<4, Float8>(Float8(0.0f)), {x, y, z},
+                                           {Float8(0.0f), Float8(1.0f), Float8(0.0f)}};
+    const glm::vec<4, Float8> out = ps(wide);
+    for (int lane = 0; lane < 8; ++lane) {
+        const glm::vec4 one = ps(groundVertex({x[lane], y[lane], z[lane]}, up));
+        for (int c = 0; c < 4; ++c) EXPECT_EQ(out[c][lane], one[c]) << "lane " << lane;
+    }
+}
+
+TEST(CloudGround, WhereTheShadowRayMissesTheCloudItIsTheFogGroundsBits) {
+    const CloudVolume v = testVolume();
+    shaders::PsCloudGround ps = testGround(v);
+    ps.ground.fog.height = false;  // constant fog (the height fog 40 voxels below y = 0 is opaque)
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    int missed = 0, hit = 0;
+    for (int i = 0; i < 4000; ++i) {
+        // Around the point under the cloud's middle (the test above), 2 box sides below the box.
+        const glm::vec3 p = glm::vec3(kVoxels * 0.5f) - ps.ground.light * float(2 * kVoxels) +
+                            glm::vec3(u(rng) * 1.5f, u(rng) * 0.05f, u(rng) * 1.5f) * float(kVoxels);
+        const glm::vec3 n = glm::normalize(glm::vec3(u(rng), u(rng) + 0.5f, u(rng)));
+        const auto [t_near, t_far] = slabInterval(v.box, p, ps.ground.light);
+        const bool misses = !(t_far > std::max(t_near, 0.0f)) || glm::dot(n, ps.ground.light) <= 0.0f;
+        const glm::vec4 cloud = ps(groundVertex(p, n)), fog = ps.ground(groundVertex(p, n));
+        if (misses) {
+            ++missed;
+            ASSERT_EQ(std::memcmp(&cloud, &fog, sizeof cloud), 0) << "at (" << p.x << ", " << p.y << ", " << p.z << ")";
+        } else {
+            hit += cloud.x < fog.x;
+        }
+    }
+    EXPECT_GT(missed, 1000);
+    EXPECT_GT(hit, 100) << "some points should lie in the shadow";
+}
+
+namespace {
+
+// A homogeneous cube of n³ voxels, μ = mu per voxel everywhere inside its box [0, n]³ (the trilinear
+// field is constant: every voxel holds the same density), majorant cells of 4 voxels.
+CloudVolume homogeneousVolume(int n, float mu) {
+    const VoxelGrid grid(glm::ivec3(n), VoxelBox{glm::vec3(0.0f), glm::vec3(1.0f)},
+                         std::vector<float>(size_t(n) * n * n, 1.0f));
+    return makeCloudVolume(grid, mu, 4);
+}
+
+VolumeLight pointLightAt(const glm::vec3& position, const glm::vec3& intensity, float g = 0.0f) {
+    VolumeLight light;
+    light.kind = LightKind::point;
+    light.position = position, light.intensity = intensity;
+    light.g = g, light.albedo = 1.0f;
+    return light;
+}
+
+// The march without terminations or skipped shadow rays: every shadow ray cast to its end.
+CloudMarchSettings exactSettings() {
+    CloudMarchSettings s;
+    s.minTransmittance = 0.0f, s.shadowMaxDepth = INFINITY, s.shadowBudget = 0.0f;
+    return s;
+}
+
+}  // namespace
+
+TEST(PointLight, InverseSquareFalloffInAVacuum) {
+    const glm::vec3 intensity{8.0f, 4.0f, 2.0f}, at{1.0f, 2.0f, 3.0f};
+    const VolumeLight light = pointLightAt(at, intensity);
+    for (float r : {0.5f, 1.0f, 2.0f, 10.0f, 1000.0f}) {
+        const glm::vec3 dir = glm::normalize(glm::vec3(0.3f, -0.8f, 0.52f));
+        const LightAtPoint seen = lightAt(light, at - dir * r);
+        EXPECT_NEAR(seen.distance, r, r * 1e-6f);
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(seen.irradiance[c], intensity[c] / (r * r), intensity[c] / (r * r) * 1e-5f);
+        EXPECT_NEAR(glm::dot(seen.toLight, dir), 1.0f, 1e-6f) << "towards the light";
+    }
+    // Through an optically thin cube (1 − e^{−μ·4} = 4e-4): the scattered radiance falls with the
+    // square of the light's distance, 1/4 at twice the distance.
+    const CloudVolume v = homogeneousVolume(4, 1e-4f);
+    const glm::vec3 eye{2.0f, 2.0f, 40.0f}, d{0.0f, 0.0f, -1.0f};
+    auto radianceWithLightAt = [&](float r) {
+        return marchCloud(v, pointLightAt(glm::vec3(2.0f) + glm::vec3(r, 0.0f, 0.0f), intensity), exactSettings(), eye, d)
+            .radiance;
+    };
+    const glm::vec3 near = radianceWithLightAt(200.0f), far = radianceWithLightAt(400.0f);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(far[c] / near[c], 0.25f, 0.25f * 1e-3f);
+}
+
+TEST(PointLight, ShadowRayThroughAHomogeneousSlabEndsAtTheLight) {
+    // Every sample's shadow transmittance is e^{−μ·(its shadow ray's length inside the box)}: to the
+    // box's exit for a light outside the box, to the light for one inside it.
+    constexpr int kN = 16;
+    constexpr float kMu = 0.05f;  // per voxel
+    const CloudVolume v = homogeneousVolume(kN, kMu);
+    const glm::vec3 eye{5.3f, 7.1f, 60.0f}, d = glm::normalize(glm::vec3(0.1f, 0.05f, -1.0f));
+    for (const glm::vec3& light_at : {glm::vec3(8.0f, 40.0f, 9.0f), glm::vec3(9.0f, 11.0f, 6.5f)}) {
+        const VolumeLight light = pointLightAt(light_at, glm::vec3(100.0f));
+        uint32_t samples = 0;
+        marchCloud(v, light, exactSettings(), eye, d, [&](const MarchSample& s) {
+            const glm::vec3 x = eye + d * s.s, l = glm::normalize(light_at - x);
+            const auto [t_near, t_far] = slabInterval(v.box, x, l);
+            const float inside = std::min(t_far, glm::length(light_at - x));
+            ASSERT_GT(inside, 0.0f);
+            EXPECT_NEAR(s.shadowTransmittance, std::exp(-kMu * inside), 2e-6f) << "sample " << s.index;
+            ++samples;
+        });
+        EXPECT_GT(samples, 4u);
+    }
+}
+
+TEST(PointLight, PhaseAngleIsBetweenTheViewRayAndTheLightsDirection) {
+    // A thin cube seen along d, the light far away (r = 2000 voxels, so l is nearly the same over the
+    // cube) behind it (l = d: forward scattering towards the eye), beside it, and on the eye's side:
+    // L ≈ albedo·p(d·l)·(I/r²)·(1 − e^{−μ·4}), and g > 0 makes the light behind the cube shine through.
+    const CloudVolume v = homogeneousVolume(4, 1e-4f);
+    const glm::vec3 centre(2.0f), eye = centre + glm::vec3(0.0f, 0.0f, 30.0f), d{0.0f, 0.0f, -1.0f};
+    const float r = 2000.0f, intensity = 4e6f;
+    for (float g : {0.7f, -0.5f}) {
+        float radiance[3];
+        int k = 0;
+        for (const glm::vec3& l : {d, glm::vec3(1.0f, 0.0f, 0.0f), -d}) {
+            const VolumeLight light = pointLightAt(centre + l * r, glm::vec3(intensity), g);
+            radiance[k] = marchCloud(v, light, exactSettings(), eye, d).radiance.x;
+            const float expected = henyeyGreenstein(g, glm::dot(d, l)) * intensity / (r * r) * -std::expm1(-4e-4f);
+            EXPECT_NEAR(radiance[k], expected, expected * 2e-3f) << "g " << g << ", light " << k;
+            ++k;
+        }
+        if (g > 0.0f) EXPECT_GT(radiance[0], 10.0f * radiance[2]) << "forward scattering: the light behind";
+        else EXPECT_GT(radiance[2], 5.0f * radiance[0]) << "backward scattering: the light on the eye's side";
+    }
+}
+
+TEST(PointLight, FarAwayItIsTheDirectionalLight) {
+    // A point light R voxels away along toLight with intensity E·R² against the directional light of
+    // irradiance E, through the generated cloud, every shadow ray cast: the same radiance to the
+    // light's spread over the box (its direction varies by 32/R radians, its irradiance by 2·32/R).
+    const CloudVolume v = testVolume();
+    const VolumeLight sun = testLight();
+    constexpr float kR = 1e5f;
+    VolumeLight point = sun;
+    point.kind = LightKind::point;
+    point.position = glm::vec3(kVoxels * 0.5f) + sun.toLight * kR;
+    point.intensity = sun.sun * (kR * kR);
+    float worst = 0.0f, largest = 0.0f;
+    for (const Ray& ray : testRays(300)) {
+        const MarchResult a = marchCloud(v, sun, exactSettings(), ray.o, ray.d);
+        const MarchResult b = marchCloud(v, point, exactSettings(), ray.o, ray.d);
+        EXPECT_FLOAT_EQ(a.transmittance, b.transmittance);
+        for (int c = 0; c < 3; ++c) {
+            worst = std::max(worst, std::abs(a.radiance[c] - b.radiance[c]));
+            largest = std::max(largest, a.radiance[c]);
+        }
+    }
+    EXPECT_GT(largest, 0.5f);
+    EXPECT_LT(worst, 2e-3f * largest);
+}
+
+TEST(CloudScene, PointLitCloudSameBitsAtOneTwoAndEightThreads) {
+    const SceneOptions o = smallCloud();
+    const std::vector<uint8_t> one = renderBytes("cloud-point", o, 1);
+    EXPECT_EQ(renderBytes("cloud-point", o, 2), one);
+    EXPECT_EQ(renderBytes("cloud-point", o, 8), one);
+    // The light under the cloud lights its underside: some pixels well above the night sky.
+    uint32_t lit = 0;
+    for (size_t p = 0; p < one.size(); p += 4) lit += one[p] > 60;
+    EXPECT_GT(lit, one.size() / 4 / 200);
 }

@@ -62,7 +62,8 @@ const char* fogFigureTitle(const std::string& name) {
         {"media-emission", "ray-marched metaballs that only emit, glowing before a dim room (--source)"},
         {"media-scattering", "single scattering, back-lit: isotropic | Rayleigh | Henyey-Greenstein g = 0.7"},
         {"media-euler", "Euler | exponential step at 8 steps | converged; red: L > 1, blue: L < 0"},
-        {"cloud", "a 256^3 voxel cloud, sun-lit with shadow rays, over the fog's ground (--voxels, --volume)"}};
+        {"cloud", "a 256^3 voxel cloud, sun-lit with shadow rays, over the fog's ground (--voxels, --volume)"},
+        {"cloud-point", "the cloud at night lit from below by a point light (1/r^2, shadow rays to the light)"}};
     const auto it = titles.find(name);
     return it == titles.end() ? nullptr : it->second;
 }

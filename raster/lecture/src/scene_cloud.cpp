@@ -1,14 +1,20 @@
 // The `cloud` scene: a voxel cloud (media::makeCloudGrid, or a volume file) lit by the sun with single
 // scattering, shadow rays and ambient light (raster/media/cloud_march.hpp), over the fog scene's ground
-// and sky. The ground is the fog scene itself, drawn first (its own draws and state); the cloud is then
-// one full-screen draw whose pixel shader marches each pixel's view ray (raster/shaders/cloud.hpp),
-// blended over it premultiplied.
+// and sky. The ground is the fog scene's world (FogGround: its draws and state), drawn first with the
+// fog scene's ground shader made to take the cloud's shadow (shaders::PsCloudGround: the sun attenuated
+// by the cloud's transmittance along each surface point's shadow ray); the cloud is then one
+// full-screen draw whose pixel shader marches each pixel's view ray (raster/shaders/cloud.hpp), blended
+// over it premultiplied.
 //
 // Depth: the cloud is drawn without a depth test, over whatever the ground pass left. That is correct
 // wherever the cloud's box lies in front of the surface each ray hits: the box's bottom (kCloudBottom)
 // is above the cubes' tops (y = 1) and the ground (y = 0), so for an eye above the cubes (every camera
 // the scene and the viewer start from) a ray reaches the box before any surface or never meets both.
 // An eye placed among the cubes can see the cloud drawn over a cube that hides it.
+//
+// `cloud-point`: the same cloud at night, lit from below by a point light (kPointLight: a lamp under
+// it) with inverse-square falloff and shadow rays that end at the light, over a plain
+// night sky; no ground (its shading knows only the sun) and no fog.
 //
 // Empty space is skipped through a majorant grid of kCloudCellVoxels³-voxel cells
 // (docs/PERFORMANCE.md, "cloud": the cell size measured).
@@ -17,6 +23,7 @@
 #include <optional>
 #include <string>
 
+#include "fog_ground.hpp"
 #include "raster/pipeline_impl.hpp"
 #include "raster/shaders/cloud.hpp"
 #include "scene_list.hpp"
@@ -31,6 +38,12 @@ constexpr float kCloudBottom = kCloudCentre.y - 0.5f * kCloudSize;
 static_assert(kCloudBottom > 1.0f, "the cloud's box must lie above the cubes (header: depth)");
 constexpr float kPeakExtinction = 12.0f;  // the densest voxel's extinction, 1/m
 constexpr uint32_t kDefaultCloudVoxels = 256;
+// cloud-point's light: under the cloud, in front of its middle, warm (a lamp below it); its radiant
+// intensity per steradian (RGB), so that the irradiance at r metres is kPointIntensity/r².
+constexpr glm::vec3 kPointLight{-0.5f, 1.6f, -2.6f};  // world, metres
+constexpr glm::vec3 kPointIntensity{50.0f, 40.0f, 27.0f};
+constexpr glm::vec3 kMoonlight{0.02f, 0.025f, 0.04f};  // cloud-point's ambient radiance
+constexpr glm::vec4 kNightSky{0.015f, 0.02f, 0.045f, 1.0f};
 
 // The sun of the ground's shading (PsFog's light), the sky's blue as ambient light.
 media::VolumeLight cloudLight() {
@@ -53,6 +66,17 @@ media::VoxelGrid cloudGrid(const SceneOptions& o) {
                 : media::loadRawVoxelGrid(o.volume, media::VoxelBox{glm::vec3(-1.0f), glm::vec3(1.0f)});
 }
 
+// cloud-point's light in the march's voxel units: the position mapped as the world is, the intensity
+// times voxelsPerMetre² (I_v/r_v² = I/r² with r_v = r·voxelsPerMetre); dim moonlight as ambient.
+media::VolumeLight pointLight(const glm::vec3& origin, float voxels_per_metre) {
+    media::VolumeLight light = cloudLight();
+    light.kind = media::LightKind::point;
+    light.position = (kPointLight - origin) * voxels_per_metre;
+    light.intensity = kPointIntensity * (voxels_per_metre * voxels_per_metre);
+    light.ambient = kMoonlight;
+    return light;
+}
+
 // The ground scene's options: the cloud's camera and the fog options as given.
 SceneOptions groundOptions(const SceneOptions& o) {
     SceneOptions ground = o;
@@ -62,7 +86,7 @@ SceneOptions groundOptions(const SceneOptions& o) {
 
 class CloudScene final : public Scene {
 public:
-    explicit CloudScene(const SceneOptions& o) : ground_(makeFogScene(groundOptions(o))) {
+    CloudScene(const SceneOptions& o, bool point) : point_(point), ground_(groundOptions(o)) {
         media::VoxelGrid grid = cloudGrid(o);
         const glm::ivec3 dims = grid.dims();
         const float longest = float(std::max({dims.x, dims.y, dims.z}));
@@ -82,8 +106,18 @@ public:
         if (o.fogSigma) ps_.fog.sigma = *o.fogSigma;
         if (o.fogSource) ps_.fog.q = *o.fogSource;
         if (o.fogFalloff) ps_.fog.b = -*o.fogFalloff;
+        RASTER_CHECK(ground_.psFog.light == ps_.light.toLight);  // the ground's sun is the cloud's
+        ground_ps_.ground = ground_.psFog;
+        ground_ps_.origin = ps_.origin;
+        ground_ps_.voxelsPerMetre = voxels_per_metre;
+        ground_ps_.volume = &volume_;
+        ground_ps_.settings = ps_.settings;
+        if (point_) {
+            ps_.light = pointLight(ps_.origin, voxels_per_metre);
+            ps_.fog.sigma = glm::vec3(0.0f), ps_.fog.q = glm::vec3(0.0f);  // rgb = L: no fog in front
+        }
     }
-    std::string_view name() const override { return "cloud"; }
+    std::string_view name() const override { return point_ ? "cloud-point" : "cloud"; }
 
     // The pixel shader's march at the pixel's centre, every evaluated sample recorded; distances in
     // metres from the eye.
@@ -112,7 +146,12 @@ public:
     }
 
     void render(Context& context, RenderTarget& color, DepthTarget& depth) override {
-        ground_->render(context, color, depth);
+        if (point_) {
+            beginSceneFrame(context, color, depth);
+            context.clearRenderTarget(color, kNightSky);
+        } else {
+            ground_.render(context, color, depth, ground_ps_);
+        }
         triangle_.bind(context);
         BlendState over;
         over.renderTarget[0] = {true, Blend::One, Blend::InvSrcAlpha, BlendOp::Add,
@@ -122,8 +161,10 @@ public:
     }
 
 private:
-    std::unique_ptr<Scene> ground_;
+    bool point_;  // cloud-point
+    FogGround ground_;
     media::CloudVolume volume_;
+    shaders::PsCloudGround ground_ps_;
     FullScreenTriangle triangle_;
     shaders::VsMediaRay vs_;
     shaders::PsCloudMarch ps_;
@@ -131,10 +172,10 @@ private:
 
 }  // namespace
 
-std::unique_ptr<Scene> makeCloudScene(const SceneOptions& options) {
+std::unique_ptr<Scene> makeCloudScene(std::string_view name, const SceneOptions& options) {
     RASTER_REQUIRE(!options.voxels || (*options.voxels >= 1 && *options.voxels <= 1024), InvalidArgument,
                    "cloud: " + std::to_string(options.voxels.value_or(0)) + " voxels per axis (1 to 1024)");
-    return std::make_unique<CloudScene>(options);
+    return std::make_unique<CloudScene>(options, name == "cloud-point");
 }
 
 }  // namespace raster

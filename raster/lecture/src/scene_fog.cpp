@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "fog_ground.hpp"
 #include "raster/pipeline_impl.hpp"
 #include "raster/shaders/basic.hpp"
 #include "raster/shaders/fog.hpp"
@@ -52,63 +53,15 @@ void applyFogOptions(const SceneOptions& o, shaders::FogMedium& fog) {
 
 class FogScene final : public Scene {
 public:
-    explicit FogScene(const SceneOptions& o) {
-        const SceneCamera camera = o.camera.value_or(kFogCamera);
-        const glm::vec3 eye = camera.eye;
-        const glm::mat4 view = sceneView(camera);
-        const glm::mat4 view_proj = sceneProjection(o) * view;
-        std::vector<LitVertexData> v;
-        const glm::vec3 up(0, 1, 0);
-        pushTriangle(v, {-40, 0, 8}, {40, 0, 8}, {40, 0, -80}, up);
-        pushTriangle(v, {-40, 0, 8}, {40, 0, -80}, {-40, 0, -80}, up);
-        for (uint32_t ix = 0; ix < o.cubes; ++ix)
-            for (uint32_t iz = 0; iz < o.cubes; ++iz)
-                pushCube(v, {(float(ix) - float(o.cubes - 1) / 2.0f) * 4.0f, 0.5f, -float(iz) * 4.0f - 2.0f}, 0.5f);
-        geometry_ = VertexBuffer::create(v);
-        vertex_count_ = uint32_t(v.size());
-        const InputElementDesc lit[] = {{"POSITION", 0, Format::R32G32B32_FLOAT, 0, 0},
-                                        {"NORMAL", 0, Format::R32G32B32_FLOAT, 0, 12}};
-        lit_layout_ = InputLayout(lit);
-        const std::vector<glm::vec2> sky = {{-1, -1}, {3, -1}, {-1, 3}};
-        sky_ = VertexBuffer::create(sky);
-        const InputElementDesc sky_desc[] = {{"POSITION", 0, Format::R32G32_FLOAT, 0, 0}};
-        sky_layout_ = InputLayout(sky_desc);
-
-        shaders::FogMedium fog;
-        fog.height = o.heightFog;
-        applyFogOptions(o, fog);
-        vs_lit_.viewProj = view_proj;
-        ps_fog_.fog = fog;
-        ps_fog_.eye = eye;
-        ps_sky_.fog = fog;
-        ps_sky_.eye = eye;
-        vs_sky_.eye = eye;
-        vs_sky_.invViewProj = glm::inverse(view_proj);
-    }
+    explicit FogScene(const SceneOptions& o) : world_(o) {}
     std::string_view name() const override { return "fog"; }
 
     void render(Context& context, RenderTarget& color, DepthTarget& depth) override {
-        beginSceneFrame(context, color, depth);
-        context.setBlendState(BlendState::opaque());
-        context.setPrimitiveTopology(Topology::TriangleList);
-        context.setDepthStencilState({true, true, ComparisonFunc::Less});
-        context.setInputLayout(&lit_layout_);
-        context.setVertexBuffer(0, &geometry_);
-        context.draw(vs_lit_, ps_fog_, vertex_count_);
-        context.setDepthStencilState({true, true, ComparisonFunc::LessEqual});
-        context.setInputLayout(&sky_layout_);
-        context.setVertexBuffer(0, &sky_);
-        context.draw(vs_sky_, ps_sky_, 3);
+        world_.render(context, color, depth, world_.psFog);
     }
 
 private:
-    VertexBuffer geometry_, sky_;
-    InputLayout lit_layout_, sky_layout_;
-    uint32_t vertex_count_ = 0;
-    shaders::VsLit vs_lit_;
-    shaders::PsFog ps_fog_;
-    shaders::VsSky vs_sky_;
-    shaders::PsSky ps_sky_;
+    FogGround world_;
 };
 
 // The lecture's fog figures (NOTES.md, part 2), each with the sky at infinite distance. Their media by
@@ -184,6 +137,39 @@ private:
 };
 
 }  // namespace
+
+FogGround::FogGround(const SceneOptions& o) {
+    const SceneCamera camera = o.camera.value_or(kFogCamera);
+    const glm::vec3 eye = camera.eye;
+    const glm::mat4 view_proj = sceneProjection(o) * sceneView(camera);
+    std::vector<LitVertexData> v;
+    const glm::vec3 up(0, 1, 0);
+    pushTriangle(v, {-40, 0, 8}, {40, 0, 8}, {40, 0, -80}, up);
+    pushTriangle(v, {-40, 0, 8}, {40, 0, -80}, {-40, 0, -80}, up);
+    for (uint32_t ix = 0; ix < o.cubes; ++ix)
+        for (uint32_t iz = 0; iz < o.cubes; ++iz)
+            pushCube(v, {(float(ix) - float(o.cubes - 1) / 2.0f) * 4.0f, 0.5f, -float(iz) * 4.0f - 2.0f}, 0.5f);
+    geometry = VertexBuffer::create(v);
+    vertexCount = uint32_t(v.size());
+    const InputElementDesc lit[] = {{"POSITION", 0, Format::R32G32B32_FLOAT, 0, 0},
+                                    {"NORMAL", 0, Format::R32G32B32_FLOAT, 0, 12}};
+    litLayout = InputLayout(lit);
+    const std::vector<glm::vec2> corners = {{-1, -1}, {3, -1}, {-1, 3}};
+    sky = VertexBuffer::create(corners);
+    const InputElementDesc sky_desc[] = {{"POSITION", 0, Format::R32G32_FLOAT, 0, 0}};
+    skyLayout = InputLayout(sky_desc);
+
+    shaders::FogMedium fog;
+    fog.height = o.heightFog;
+    applyFogOptions(o, fog);
+    vsLit.viewProj = view_proj;
+    psFog.fog = fog;
+    psFog.eye = eye;
+    psSky.fog = fog;
+    psSky.eye = eye;
+    vsSky.eye = eye;
+    vsSky.invViewProj = glm::inverse(view_proj);
+}
 
 FogWorldData::FogWorldData(uint32_t cubes) {
     constexpr float kTile = 2.0f;

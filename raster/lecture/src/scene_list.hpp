@@ -64,11 +64,12 @@ constexpr SceneCamera kMediaFigureCamera{{0, 0.45f, 2.7f}, {0, 0.2f, 0}};
 constexpr SceneCamera kMediaPanelCamera{{0, 0.45f, 4.4f}, {0, 0.2f, 0}};
 std::vector<std::string_view> mediaFigureNames();
 std::unique_ptr<Scene> makeMediaFigureScene(std::string_view name, const SceneOptions& options);
-// A voxel cloud over the fog scene's ground (scene_cloud.cpp), empty space skipped through majorant
-// cells of kCloudCellVoxels³ voxels.
+// A voxel cloud over the fog scene's ground, sun-lit (`cloud`), or lit from below by a point light
+// at night (`cloud-point`) (scene_cloud.cpp), empty space skipped through majorant cells of
+// kCloudCellVoxels³ voxels.
 constexpr SceneCamera kCloudCamera{{0, 1.7f, 6}, {0, 3.0f, -4}};
 constexpr int kCloudCellVoxels = 16;
-std::unique_ptr<Scene> makeCloudScene(const SceneOptions& options);
+std::unique_ptr<Scene> makeCloudScene(std::string_view name, const SceneOptions& options);
 std::unique_ptr<Scene> makeFireScene(const SceneOptions& options);
 std::unique_ptr<Scene> makeSmokeScene(const SceneOptions& options);  // scene_smoke.cpp
 std::unique_ptr<Scene> makeSpritesScene(const SceneOptions& options);

@@ -107,9 +107,9 @@ std::unique_ptr<Scene> makeFogFigureChecked(std::string_view name, const SceneOp
     requireCubes(options);
     return makeFogFigureScene(name, options);
 }
-std::unique_ptr<Scene> makeCloudChecked(std::string_view, const SceneOptions& options) {
+std::unique_ptr<Scene> makeCloudChecked(std::string_view name, const SceneOptions& options) {
     requireCubes(options);
-    return makeCloudScene(options);
+    return makeCloudScene(name, options);
 }
 std::unique_ptr<Scene> makeMediaChecked(std::string_view, const SceneOptions& options) {
     requireCubes(options);
@@ -156,6 +156,7 @@ const std::vector<BuiltinScene>& builtinScenes() {
         list.push_back({"media-closed-form", kMediaCamera, makeMediaChecked});
         list.push_back({"media", kMediaMarchCamera, makeNamed<makeMediaMarchScene>});
         list.push_back({"cloud", kCloudCamera, makeCloudChecked});
+        list.push_back({"cloud-point", kCloudCamera, makeCloudChecked});
         for (std::string_view name : mediaFigureNames())
             list.push_back({name, name == "media-absorption" || name == "media-emission" ? kMediaFigureCamera
                                                                                          : kMediaPanelCamera,

@@ -1,4 +1,5 @@
-// The `cloud` scene's march: single scattering of a directional light in a voxel medium (voxel_grid.hpp),
+// The `cloud` scene's march: single scattering of a directional or a point light (VolumeLight,
+// metaball_march.hpp) in a voxel medium (voxel_grid.hpp),
 // with shadow rays through the medium, an isotropic ambient term and the exponential step, front to back
 // from the eye; empty space skipped through a coarse majorant grid walked by the 3D DDA
 // (majorant_grid.hpp).
@@ -13,8 +14,10 @@
 // Per view ray o + s·d (d unit length) over its stretch [s0, s1] inside the box: N = ⌈(s1 − s0)/step⌉
 // steps of Δs = (s1 − s0)/N sampled at their midpoints s_i = s0 + (i + ½)·Δs. At a sample with μ_i > 0:
 //   shadow ray   τ_l = Σ_j μ(x_i + l·(j + ½)·Δl)·Δl, M = ⌈t_l/shadowStep⌉ steps of Δl = t_l/M to the
-//                box's exit t_l along l (towards the light)
-//   source       S_i = albedo·(p(cos θ)·e^{−τ_l}·E + A)     (cos θ = d·l, Henyey–Greenstein)
+//                box's exit t_l along l (towards the light); a point light's l = (P − x_i)/r and its
+//                shadow ray ends at the light where that comes first: t_l = min(exit, r)
+//   source       S_i = albedo·(p(cos θ)·e^{−τ_l}·E + A)     (cos θ = d·l, Henyey–Greenstein; a point
+//                light's E = I/r² and cos θ per sample)
 //   step         L += T·S_i·(1 − e^{−μ_iΔs}),  T *= e^{−μ_iΔs} (exact for μ, S constant over the step)
 // and the pixel is L + T·L_bg. Samples with μ_i = 0 add nothing and leave T alone.
 //
@@ -127,7 +130,9 @@ struct CloudMarchSettings {
 };
 
 // The largest error of the terminations and skipped shadow rays against the march without them, per
-// channel, for a background ≤ 1 (header).
+// channel, for a background ≤ 1 (header), for a directional light. (A point light's E is I/r² at the
+// sample: the bound holds with E the largest irradiance over the box, unbounded for a light inside it;
+// the skipped shadow rays' share, shadowBudget, holds for either light: each sample's bound uses its E.)
 inline float cloudErrorBound(const VolumeLight& light, const CloudMarchSettings& s) {
     const float e_max = std::max({light.sun.x, light.sun.y, light.sun.z});
     const float a_max = std::max({light.ambient.x, light.ambient.y, light.ambient.z});
@@ -153,24 +158,68 @@ void forCloudSamples(const CloudVolume& v, bool skip, const glm::vec3& o, const 
         if (!visit(i)) return;
 }
 
-// τ_l from x to the box's exit towards the light (header), stopped once it exceeds the settings' depth:
-// Σ μ_j·Δl in j's order over the samples skipping keeps.
-inline float cloudShadowDepth(const CloudVolume& v, const VolumeLight& light, const glm::vec3& inv_light,
-                              const CloudMarchSettings& s, const glm::vec3& x, MarchResult& result) {
-    const float exit = exitDistance(v.box, x, light.toLight, inv_light);
-    if (!(exit > 0.0f)) return 0.0f;
-    const uint32_t m = std::max(1u, uint32_t(std::ceil(exit / s.shadowStep)));
-    const float dl = exit / float(m);
+// τ along the ray x + t·l over [t0, t1] (l unit length; voxel units): M = ⌈(t1 − t0)/shadowStep⌉ steps
+// of Δl = (t1 − t0)/M sampled at their midpoints, Σ μ_j·Δl in j's order over the samples skipping keeps,
+// stopped once it exceeds the settings' depth (header: shadow termination).
+inline float cloudOpticalDepth(const CloudVolume& v, const CloudMarchSettings& s, const glm::vec3& x,
+                               const glm::vec3& l, float t0, float t1, MarchResult& result) {
+    const uint32_t m = std::max(1u, uint32_t(std::ceil((t1 - t0) / s.shadowStep)));
+    const float dl = (t1 - t0) / float(m);
     float tau = 0.0f;
-    forCloudSamples(v, s.skip, x, light.toLight, 0.0f, dl, m, [&](uint32_t j) {
+    forCloudSamples(v, s.skip, x, l, t0, dl, m, [&](uint32_t j) {
         ++result.densityEvaluations;
-        tau += v.extinction(x + light.toLight * ((float(j) + 0.5f) * dl)) * dl;
+        tau += v.extinction(x + l * (t0 + (float(j) + 0.5f) * dl)) * dl;
         return !(tau > s.shadowMaxDepth);
     });
     return tau;
 }
 
+// τ_l from x to the box's exit towards the light (header), stopped once it exceeds the settings' depth.
+inline float cloudShadowDepth(const CloudVolume& v, const VolumeLight& light, const glm::vec3& inv_light,
+                              const CloudMarchSettings& s, const glm::vec3& x, MarchResult& result) {
+    const float exit = exitDistance(v.box, x, light.toLight, inv_light);
+    if (!(exit > 0.0f)) return 0.0f;
+    return cloudOpticalDepth(v, s, x, light.toLight, 0.0f, exit, result);
+}
+
+// τ from x to the point light or the box's exit, whichever comes first (at = lightAt(light, x)).
+inline float cloudPointShadowDepth(const CloudVolume& v, const CloudMarchSettings& s, const glm::vec3& x,
+                                   const LightAtPoint& at, MarchResult& result) {
+    const float end = std::min(exitDistance(v.box, x, at.toLight, 1.0f / at.toLight), at.distance);
+    if (!(end > 0.0f)) return 0.0f;
+    return cloudOpticalDepth(v, s, x, at.toLight, 0.0f, end, result);
+}
+
+// A sample's single-scattered light before the shadow ray: albedo·p(cos θ)·E, its largest channel
+// (the bound of a skipped shadow ray, header) and the light seen from the sample.
+struct ScatteredLight {
+    glm::vec3 scattered;
+    float largest;
+    LightAtPoint at;
+};
+
+// The same for a point light at the sample x on the view ray d: cos θ = d·l (metaball_march.hpp's
+// VolumeLight: the convention), E = I/r².
+inline ScatteredLight pointLightSample(const VolumeLight& light, const glm::vec3& d, const glm::vec3& x) {
+    const LightAtPoint at = lightAt(light, x);
+    const glm::vec3 scattered = light.albedo * henyeyGreenstein(light.g, glm::dot(d, at.toLight)) * at.irradiance;
+    return {scattered, std::max({scattered.x, scattered.y, scattered.z}), at};
+}
+
 }  // namespace detail
+
+// The transmittance e^{−τ} from a point x anywhere (inside the box or outside it: a surface under the
+// cloud) towards the light along l (unit length), through the cloud: the shadow ray clipped to the
+// box, marched as the view ray's shadow rays are (majorant skipping, shadow termination). Exactly 1
+// where the ray misses the box: nothing evaluated.
+inline float cloudShadowTransmittance(const CloudVolume& v, const CloudMarchSettings& s, const glm::vec3& x,
+                                      const glm::vec3& l) {
+    const auto [t_near, t_far] = slabInterval(v.box, x, l);
+    const float t0 = std::max(t_near, 0.0f);
+    if (!(t_far > t0)) return 1.0f;
+    MarchResult unused;
+    return raster::exp(-detail::cloudOpticalDepth(v, s, x, l, t0, t_far, unused));
+}
 
 // The radiance and transmittance of one view ray over its stretch [s0, s1] inside the box (voxel units,
 // header); the caller clips: s0 = max(s_near, 0), s1 = s_far of slabInterval(v.box, eye, d).
@@ -181,8 +230,11 @@ MarchResult marchCloud(const CloudVolume& v, const VolumeLight& light, const Clo
     if (!(s1 > s0)) return result;
     const uint32_t n = std::max(1u, uint32_t(std::ceil((s1 - s0) / s.step)));
     const float ds = (s1 - s0) / float(n);
+    const bool point = light.kind == LightKind::point;
     const glm::vec3 inv_light = 1.0f / light.toLight;
-    const float phase = henyeyGreenstein(light.g, glm::dot(d, light.toLight));
+    // A directional light's phase and scattered irradiance are the same at every sample; a point
+    // light's are recomputed per sample (detail::pointLightSample).
+    const float phase = point ? 0.0f : henyeyGreenstein(light.g, glm::dot(d, light.toLight));
     const glm::vec3 sun_scattered = light.albedo * phase * light.sun;
     const float sun_max = std::max({sun_scattered.x, sun_scattered.y, sun_scattered.z});
     float skipped = 0.0f;  // the skipped shadow rays' error so far (header)
@@ -194,14 +246,18 @@ MarchResult marchCloud(const CloudVolume& v, const VolumeLight& light, const Clo
         MarchSample sample{i, t, mu, mu * ds, result.transmittance, 1.0f, glm::vec3(0.0f)};
         if (mu > 0.0f) {
             const float e = raster::expm1(-(mu * ds));  // e^{−μΔs} − 1
-            const float half_bound = 0.5f * result.transmittance * -e * sun_max;
+            const detail::ScatteredLight lit = point ? detail::pointLightSample(light, d, x)
+                                                     : detail::ScatteredLight{sun_scattered, sun_max, {}};
+            const float half_bound = 0.5f * result.transmittance * -e * lit.largest;
             float shadow_t = 0.5f;
             if (skipped + half_bound <= s.shadowBudget)
                 skipped += half_bound;
+            else if (point)
+                shadow_t = raster::exp(-detail::cloudPointShadowDepth(v, s, x, lit.at, result));
             else
                 shadow_t = raster::exp(-detail::cloudShadowDepth(v, light, inv_light, s, x, result));
             sample.shadowTransmittance = shadow_t;
-            const glm::vec3 source = shadow_t * sun_scattered + light.albedo * light.ambient;
+            const glm::vec3 source = shadow_t * lit.scattered + light.albedo * light.ambient;
             sample.added = result.transmittance * source * -e;
             result.radiance += sample.added;
             result.transmittance *= 1.0f + e;

@@ -6,6 +6,8 @@
 // (forward scattering), θ = π straight back. Henyey–Greenstein's g is the mean of cos θ: g > 0
 // scatters forward, g < 0 backward, g = 0 is isotropic. (pbrt-v4 writes the same functions in terms
 // of wo pointing back toward where the light came from, so its cos θ is the negative of this one.)
+// In a march (VolumeLight, metaball_march.hpp) with view ray d from the eye and l from the sample
+// towards the light, directional or point, the light travels along −l and leaves along −d: cos θ = d·l.
 //
 // Each function is a density over the sphere: ∫ p dω = 2π·∫₋₁¹ p(cos θ) d(cos θ) = 1, with unit 1/sr.
 //   isotropic         p = 1/(4π)

@@ -12,6 +12,9 @@
 // fog's in-scattering and transmittance over [0, s_e]: the shader returns rgb = T_e·L + (1 − T)·F_e and
 // alpha = 1 − T, and the blend ONE, INV_SRC_ALPHA adds T·dst. A ray that misses the box returns 0: dst
 // unchanged.
+//
+// The ground under the cloud (PsCloudGround): the fog scene's ground shader with its sun attenuated by
+// the cloud's transmittance along the shadow ray from the surface point towards the sun.
 #pragma once
 
 #include <algorithm>
@@ -72,6 +75,42 @@ struct PsCloudMarch {
                 for (int k = 0; k < 4; ++k) out[k][l] = c[k];
             }
             return {T::load(out[0]), T::load(out[1]), T::load(out[2]), T::load(out[3])};
+        }
+    }
+};
+
+// The fog scene's ground (PsFog) with the cloud's shadow: the sunlit term max(0, n·l) times the
+// cloud's transmittance e^{−τ} from the surface point towards the sun (media::cloudShadowTransmittance:
+// the cloud march's shadow ray, majorant-skipped, the same shadow termination). Where the shadow ray
+// misses the cloud's box, or the surface faces away from the sun, nothing is marched and the term is
+// multiplied by exactly 1: the fog ground's bits. The fog over the ground is the fog scene's: the
+// sunlight reaching the ground is not attenuated by the fog (as PsFog has it).
+struct PsCloudGround {
+    using SpecialisedStates = PsFog::SpecialisedStates;  // drawn as the fog scene's ground is
+    using Input = LitVertex;
+    PsFog ground;                     // the fog scene's shading; its light is the direction to the sun
+    glm::vec3 origin{0.0f};           // world position of the voxels' corner (0, 0, 0)
+    float voxelsPerMetre = 1.0f;
+    const media::CloudVolume* volume = nullptr;
+    media::CloudMarchSettings settings;
+
+    // The sun's visibility at a world point: 1 where the shadow ray misses the cloud's box.
+    float sunVisibility(const glm::vec3& world) const {
+        return media::cloudShadowTransmittance(*volume, settings, (world - origin) * voxelsPerMetre, ground.light);
+    }
+
+    template <class T>
+    glm::vec<4, T> operator()(const LitVertexT<T>& in) const {
+        const T lambert = ground.lambert(in);
+        if constexpr (std::is_same_v<T, float>) {
+            return ground.shade(in, lambert > 0.0f ? lambert * sunVisibility(in.worldPos) : lambert);
+        } else {
+            constexpr int kLanes = int(sizeof(T) / sizeof(float));
+            alignas(64) float x[kLanes], y[kLanes], z[kLanes], lit[kLanes];
+            in.worldPos.x.store(x), in.worldPos.y.store(y), in.worldPos.z.store(z), lambert.store(lit);
+            for (int l = 0; l < kLanes; ++l)
+                if (lit[l] > 0.0f) lit[l] *= sunVisibility({x[l], y[l], z[l]});
+            return ground.shade(in, T::load(lit));
         }
     }
 };

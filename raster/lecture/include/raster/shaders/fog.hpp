@@ -118,11 +118,23 @@ struct PsFog {
 
     template <class T>
     glm::vec<4, T> operator()(const LitVertexT<T>& in) const {
+        return shade(in, lambert(in));
+    }
+
+    // max(0, n·l) at the pixel.
+    template <class T>
+    T lambert(const LitVertexT<T>& in) const {
+        const glm::vec<3, T> n = normalize(in.normal);
+        return max(T(0.0f), n.x * T(light.x) + n.y * T(light.y) + n.z * T(light.z));
+    }
+
+    // The pixel's colour given its sunlit term `lit` (lambert(in), times the sun's visibility in a
+    // variant whose sun can be shadowed: PsCloudGround).
+    template <class T>
+    glm::vec<4, T> shade(const LitVertexT<T>& in, T lit) const {
         using V3 = glm::vec<3, T>;
-        const V3 n = normalize(in.normal);
-        const T lambert = max(T(0.0f), n.x * T(light.x) + n.y * T(light.y) + n.z * T(light.z));
-        const T shade = T(ambient) + T(1.0f - ambient) * lambert;
-        const V3 L0(T(albedo.x) * shade, T(albedo.y) * shade, T(albedo.z) * shade);
+        const T level = T(ambient) + T(1.0f - ambient) * lit;
+        const V3 L0(T(albedo.x) * level, T(albedo.y) * level, T(albedo.z) * level);
         const V3 d(in.worldPos.x - T(eye.x), in.worldPos.y - T(eye.y), in.worldPos.z - T(eye.z));
         const T s = length(d);
         const V3 L = fog.applyOpticalDepth(L0, fog.opticalDepth(eye.y, d.y / s, s));
