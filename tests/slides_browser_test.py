@@ -11,7 +11,7 @@ slide by slide through the DevTools protocol (a WebSocket client of Python's sta
 
     slides_browser_test.py SOURCE_DIR BUILD_DIR RASTER
 
-When BUILD_DIR/slides lacks a deck, it is built first (slides/build_deck.py html). Exit 77 (ctest's
+When BUILD_DIR/slides lacks a deck or one is older than slides/'s sources, they are built first (slides/build_deck.py html). Exit 77 (ctest's
 skip), saying what is missing, without Chromium, pandoc or slides/node_modules (RASTER_WITH_SLIDES=1
 bash .ci/setup installs them).
 """
@@ -27,7 +27,7 @@ import tempfile
 import time
 import urllib.request
 
-SCREENSHOTS_PER_DECK = 2
+SCREENSHOTS_PER_DECK = 3
 ALLOWED_SCHEMES = ("data:", "blob:", "about:", "file:")
 
 
@@ -210,8 +210,11 @@ def main(source_dir, build_dir, raster):
     import build_deck
     out = os.path.join(build_dir, "slides")
     decks = [os.path.join(out, d + ".html") for d in build_deck.DECKS]
-    if not all(os.path.isfile(d) for d in decks):
-        print("slides_browser: building the decks into %s" % out)
+    sources = [os.path.join(source_dir, "slides", n) for n in os.listdir(os.path.join(source_dir, "slides"))
+               if n.endswith((".md", ".txt", ".css", ".py"))]
+    newest_source = max(os.path.getmtime(s) for s in sources)
+    if not all(os.path.isfile(d) and os.path.getmtime(d) >= newest_source for d in decks):
+        print("slides_browser: building the decks into %s (missing or older than slides/)" % out)
         build_deck.html(raster, out)
     shots_dir = os.path.join(out, "screenshots")
     os.makedirs(shots_dir, exist_ok=True)
