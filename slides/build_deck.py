@@ -7,6 +7,7 @@ included from the sources, and the offline HTML.
         lines between `// slide: MARKER` and `// end slide: MARKER` in PATH (relative to the project's
         root), dedented. Fails, naming the deck and line, when the file or a marker is missing, a
         marker is there twice, or a pair is unbalanced.
+        A line `<!-- figure-missing: WHAT -->` becomes a visible placeholder box saying what is missing.
     build_deck.py figures --raster BIN --out DIR [--only NAME...]
         renders every figure of slides/figures.txt into DIR (the names the decks use).
     build_deck.py html --raster BIN --build DIR
@@ -22,6 +23,7 @@ against-error plot of `raster bench error` (gnuplot; its timings differ from run
 compares it).
 """
 import argparse
+from html import escape as html_escape
 import os
 import re
 import shutil
@@ -32,6 +34,8 @@ import tempfile
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 INCLUDE = re.compile(r"^\s*<!--\s*include:\s*(\S+?)#([A-Za-z0-9_-]+)\s*-->\s*$")
+# A figure that no scene draws yet: shown as a dashed box that says what is missing.
+MISSING = re.compile(r"^\s*<!--\s*figure-missing:\s*(.*?)\s*-->\s*$")
 LANGUAGES = {".cpp": "cpp", ".hpp": "cpp", ".h": "cpp", ".py": "python", ".hlsl": "cpp"}
 DECKS = [
     "01-participating-media",
@@ -75,6 +79,10 @@ def expand(text, where, root=ROOT):
     """The deck's text with its include lines replaced by code blocks."""
     out = []
     for number, line in enumerate(text.split("\n"), 1):
+        missing = MISSING.match(line)
+        if missing:
+            out.append('<div class="placeholder">Missing figure: %s</div>' % html_escape(missing.group(1)))
+            continue
         m = INCLUDE.match(line)
         if not m:
             if "<!-- include" in line:

@@ -5,6 +5,7 @@ slide by slide through the DevTools protocol (a WebSocket client of Python's sta
   - every image on a shown slide has decoded (complete, naturalWidth > 0);
   - every formula on a shown slide is MathML that the browser laid out (a <math> box wider and taller
     than 0), and no TeX source is left in the text ($$, \\frac);
+  - nothing on a slide lies outside the window (a slide too full);
   - no request left the machine: every URL the page asked for is data:, blob:, about: or the deck's
     own file: (the network is cut as well: every host name resolves to nothing);
   - screenshots of each deck's first slides are written to BUILD/slides/screenshots/.
@@ -122,7 +123,10 @@ SLIDE_CHECK = """(() => {
   const maths = [...slide.querySelectorAll('math')].map(m => {
       const r = m.getBoundingClientRect(); return {w: r.width, h: r.height}; });
   const text = slide.innerText;
-  return {title: (slide.querySelector('h1,h2') || {}).innerText || '', images, maths,
+  // Content outside the window: a slide too full, or centred before its images had a size.
+  const outside = [...slide.children].filter(e => { const r = e.getBoundingClientRect();
+      return r.height > 0 && (r.top < -1 || r.bottom > innerHeight + 1); }).map(e => e.tagName);
+  return {title: (slide.querySelector('h1,h2') || {}).innerText || '', images, maths, outside,
           tex: text.includes('$$') || text.includes('\\\\frac')};
 })()"""
 
@@ -182,6 +186,8 @@ def walk_deck(page, path, shots_dir):
             maths += 1
             if not (m["w"] > 0 and m["h"] > 0):
                 problems.append("%s: a formula laid out as %gx%g" % (where, m["w"], m["h"]))
+        if slide["outside"]:
+            problems.append("%s: %s outside the window" % (where, ", ".join(slide["outside"])))
         if slide["tex"]:
             problems.append("%s: TeX source left in the text" % where)
         if k < SCREENSHOTS_PER_DECK:
@@ -219,7 +225,7 @@ def main(source_dir, build_dir, raster):
     shots_dir = os.path.join(out, "screenshots")
     os.makedirs(shots_dir, exist_ok=True)
     problems, slides = [], 0
-    with tempfile.TemporaryDirectory() as profile:
+    with tempfile.TemporaryDirectory(ignore_cleanup_errors=True) as profile:
         process, url = start_chromium(profile)
         try:
             page = Page(WebSocket(url))

@@ -4,7 +4,7 @@
   - every deck expands: each `<!-- include: PATH#MARKER -->` finds its marker pair in PATH;
   - the preprocessor fails on a missing file, a missing marker, an unbalanced or a doubled pair;
   - every figure a deck shows is one that slides/figures.txt renders, and is committed;
-  - no deck shows a placeholder for a missing figure;
+  - the placeholders for figures that no scene draws yet are listed (none today);
   - the offline check finds a src or href that leaves the machine and passes local ones.
 
     slides_decks_test.py SOURCE_DIR
@@ -23,6 +23,7 @@ def main(source_dir):
     for name, _, options in build_deck.read_figures():
         rendered.update(build_deck.figure_files(name, options))
     includes = shown = 0
+    placeholders = []
     for deck in build_deck.DECKS:
         path = os.path.join(source_dir, "slides", deck + ".md")
         text = open(path, encoding="utf-8").read()
@@ -38,8 +39,8 @@ def main(source_dir):
                 failures.append("%s shows figures/%s, which figures.txt does not render" % (deck, figure))
             if not os.path.isfile(os.path.join(source_dir, "slides", "figures", figure)):
                 failures.append("%s shows figures/%s, which is not committed" % (deck, figure))
-        if "placeholder" in expanded:
-            failures.append("%s still shows a placeholder for a missing figure" % deck)
+        for what in re.findall(r'<div class="placeholder">Missing figure: (.*?)</div>', expanded):
+            placeholders.append("%s: %s" % (deck, what))
     with tempfile.TemporaryDirectory() as d:
         src = os.path.join(d, "a.cpp")
         with open(src, "w") as f:
@@ -61,6 +62,9 @@ def main(source_dir):
             failures.append("a missing file expanded")
         except build_deck.DeckError:
             pass
+        box = build_deck.expand("<!-- figure-missing: no scene draws X -->", "t.md", d)
+        if box != '<div class="placeholder">Missing figure: no scene draws X</div>':
+            failures.append("a figure-missing line expanded to %r, not a placeholder box" % box)
         html = os.path.join(d, "a.html")
         with open(html, "w") as f:
             f.write('<img src="data:image/png;base64,AA"><a href="#/3">x</a><img src="figures/a.png">'
@@ -69,8 +73,11 @@ def main(source_dir):
         bad = build_deck.check_offline([html])
         if len(bad) != 3:
             failures.append("check_offline found %d links off the machine, not 3: %s" % (len(bad), bad))
+    for p in placeholders:
+        print("placeholder left (a figure no scene draws yet): " + p)
     for f in failures:
         print("FAIL " + f)
+    print("slides_decks: %d placeholders left" % len(placeholders))
     print("slides_decks: %d decks, %d code includes, %d figures shown: %s" %
           (len(build_deck.DECKS), includes, shown, "FAIL" if failures else "all good"))
     return 1 if failures or includes == 0 or shown == 0 else 0
