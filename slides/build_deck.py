@@ -49,6 +49,9 @@ DECKS = [
 LEAVES = re.compile(r"""(?:src|href)\s*=\s*["']?\s*((?:https?:|ftp:|wss?:)?//[^"'\s>]*)""", re.I)
 
 
+LAB_LINE = re.compile(r"^\s*//(?:> .*|>$| BEGIN\b.*| END\b.*| STAND-IN\s*)$")
+
+
 class DeckError(Exception):
     pass
 
@@ -68,7 +71,9 @@ def marked_lines(path, marker):
         raise DeckError("%s: marker %s appears more than once" % (path, marker))
     if not ends or ends[0] < starts[0]:
         raise DeckError("%s: `// slide: %s` without its `// end slide: %s` after it" % (path, marker, marker))
-    body = lines[starts[0] + 1:ends[0]]
+    # The answers as the solution has them: a lab's marker lines and the handout's stand-in lines
+    # (labs/generate.py) left out.
+    body = [l for l in lines[starts[0] + 1:ends[0]] if not LAB_LINE.match(l)]
     if not any(l.strip() for l in body):
         raise DeckError("%s: marker %s encloses nothing" % (path, marker))
     indent = min(len(l) - len(l.lstrip()) for l in body if l.strip())
