@@ -15,7 +15,8 @@ lines, followed by the handout's, each of those behind `//>`:
     ...                   the same as a place, but its two sides must be the same code once
     // END NOTE           comments and white space are taken out
 
-Every line outside the pairs is the handout's too, verbatim. The places appear in the increasing
+Every line outside the pairs is the handout's too, verbatim, but the slides' `// slide: NAME` and
+`// end slide: NAME` lines (slides/README.md), which neither the handout nor the solved text keeps. The places appear in the increasing
 order of their numbers, each number once; a place may take several pairs one right after the other
 (a constant its stand-in needs, then the function), and one that the lab's order puts elsewhere in
 the file says so: `// BEGIN LAB 4 (out of order)`. The numbers are 1 to n, those of the lab's README
@@ -41,6 +42,9 @@ STAND_IN = re.compile(r"^\s*// STAND-IN\s*$")
 HANDOUT_LINE = re.compile(r"^(\s*)//>(?: (.*))?$")
 PLACE = re.compile(r"^LAB ([1-9][0-9]*)( \(out of order\))?$")
 NOTE = "NOTE"
+# The slides' marker pairs (slides/README.md, "Code on a slide"): the solution's alone, in neither the
+# handout nor the solved text.
+SLIDE_MARKER = re.compile(r"^\s*// (?:end )?slide: [A-Za-z0-9_-]+\s*$")
 README_PLACE = re.compile(r"^\|\s*LAB ([0-9]+)\b")
 
 
@@ -63,6 +67,8 @@ def parse(text, where):
     out, solved, regions, errors, open_region, orphans = [], [], [], [], None, None
     for number, line in enumerate(text.splitlines(keepends=True), 1):
         body = line.rstrip("\r\n")
+        if SLIDE_MARKER.match(body):
+            continue
         begin, end, handout = BEGIN.match(body), END.match(body), HANDOUT_LINE.match(body)
         if begin:
             kind = begin[2]

@@ -50,7 +50,8 @@ const char* blendFigureTitle(const std::string& name) {
 }
 
 // The lecture's fog figures (src/scene_fog.cpp, src/scene_media.cpp) and part 1's figures by ray
-// marching (src/scene_media_figures.cpp); --sigma, --source and --falloff change their medium.
+// marching (src/scene_media_figures.cpp), and the slides' diagrams (src/scene_slide_figures.cpp); --sigma,
+// --source and --falloff change the medium of the fog and media figures.
 const char* fogFigureTitle(const std::string& name) {
     static const std::map<std::string, const char*> titles = {
         {"fog-constant", "fog figure: constant fog, L0*e^(-sigma*s) + (q/sigma)*(1 - e^(-sigma*s)), the sky at s = inf"},
@@ -63,7 +64,9 @@ const char* fogFigureTitle(const std::string& name) {
         {"media-scattering", "single scattering, back-lit: isotropic | Rayleigh | Henyey-Greenstein g = 0.7"},
         {"media-euler", "Euler | exponential step at 8 steps | converged; red: L > 1, blue: L < 0"},
         {"cloud", "a 256^3 voxel cloud, sun-lit with shadow rays, over the fog's ground (--voxels, --volume)"},
-        {"cloud-point", "the cloud at night lit from below by a point light (1/r^2, shadow rays to the light)"}};
+        {"cloud-point", "the cloud at night lit from below by a point light (1/r^2, shadow rays to the light)"},
+        {"phase-polar", "slide diagram: isotropic, Rayleigh, Henyey-Greenstein g = +-0.3 | +-0.7 as polar plots"},
+        {"media-march-steps", "slide diagram: the media scene's centre ray in 24 steps: samples, mu*ds, T, L"}};
     const auto it = titles.find(name);
     return it == titles.end() ? nullptr : it->second;
 }

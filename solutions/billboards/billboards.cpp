@@ -49,6 +49,7 @@ struct GsBillboard {
     void operator()(const Point<BillboardVertex>& in, TriangleStream<BillboardCorner, 4>& stream) const {
         const glm::vec4 c = viewProj * in[0].position;
         // BEGIN LAB 1
+        // slide: gs-billboard
         // LAB 1: open the sprite in clip space. The offset is added before the division by w, so the
         // sprite keeps its world size; the strip order makes two triangles (0 1 2) and (1 3 2).
         const float bx = billboardSize.x, by = billboardSize.y;
@@ -56,6 +57,7 @@ struct GsBillboard {
         stream.Append({c + glm::vec4(bx, -by, 0, 0), {1, 1}});
         stream.Append({c + glm::vec4(-bx, by, 0, 0), {0, 0}});
         stream.Append({c + glm::vec4(-bx, -by, 0, 0), {0, 1}});
+        // end slide: gs-billboard
         // STAND-IN
         //> // LAB 1: open the sprite after the projection (the lecture's method (c)). Emit four corners
         //> // c + (±billboardSize.x, ±billboardSize.y, 0, 0) as a triangle strip, in the slide's order:
@@ -89,6 +91,7 @@ struct PsFire {
 };
 
 // BEGIN LAB 3
+// slide: additive-blend
 // LAB 3: the output merger adds the fire: rgb = src.rgb*src.a + dst.rgb, a = src.a*src.a + dst.a
 // (SRC_ALPHA, ONE, ADD for colour and alpha). Addition does not care about order: no sorting.
 BlendState fireBlend() {
@@ -99,6 +102,7 @@ BlendState fireBlend() {
     rt.srcBlendAlpha = Blend::SrcAlpha, rt.destBlendAlpha = Blend::One, rt.blendOpAlpha = BlendOp::Add;
     return blend;
 }
+// end slide: additive-blend
 // STAND-IN
 //> // LAB 3: the output merger must add the fire to what is behind it:
 //> //   rgb = src.rgb * src.a + dst.rgb,   a = src.a * src.a + dst.a

@@ -72,6 +72,7 @@ constexpr auto kPerVertex = InputClassification::PerVertexData;
 
 // The input layout, the lecture's particleElements[] with the colour added: per element its semantic,
 // the format of the field it reads, slot 0, the field's offset in Particle, per-vertex data.
+// slide: input-elements
 const InputElementDesc kParticleElements[] = {
     // The lecture's particleElements[0], written out: the position, three floats at the start.
     {"POSITION", 0, Format::R32G32B32_FLOAT, 0, offsetof(Particle, position), kPerVertex, 0},
@@ -98,6 +99,7 @@ const InputElementDesc kParticleElements[] = {
     //> {"COLOR", 0, Format::R32G32B32_FLOAT, 0, 0, kPerVertex, 0},
     // END LAB 2
 };
+// end slide: input-elements
 
 // vsParticle: each particle is one point, drawn one pixel large.
 struct VsParticle {

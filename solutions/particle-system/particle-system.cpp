@@ -100,6 +100,7 @@ void emit(Particle& p, const Emitter& e, const BirthRandom& r) {
 // ½·a·dt per second of flight: 8 cm of a spark's 1.5 s.)
 void move(Particle& p, const Effectors& e, float dt) {
     // BEGIN LAB 2
+    // slide: effectors
     const float heat = 1.0f - std::clamp(p.age / p.lifespan, 0.0f, 1.0f);
     const glm::vec3 a = e.gravity + glm::vec3(0.0f, e.buoyancy * heat, 0.0f);
     const glm::vec3 terminal = e.wind + a / e.drag;
@@ -107,6 +108,7 @@ void move(Particle& p, const Effectors& e, float dt) {
     const glm::vec3 v0 = p.velocity;
     p.velocity = terminal + (v0 - terminal) * decay;
     p.position += terminal * dt + (v0 - terminal) * ((1.0f - decay) / e.drag);
+    // end slide: effectors
     // STAND-IN
     //> // As handed out: nothing moves.
     //> (void)p, (void)e, (void)dt;
@@ -118,9 +120,11 @@ void move(Particle& p, const Effectors& e, float dt) {
 // (emit with that birth's random numbers).
 void live(Particle& p, const Effectors& e, float dt, const std::function<void(Particle&)>& rebirth) {
     // BEGIN LAB 3
+    // slide: life-cycle
     move(p, e, dt);
     p.age += dt;
     if (p.age >= p.lifespan) rebirth(p);
+    // end slide: life-cycle
     // STAND-IN
     //> // As handed out: the particle moves but never ages, so it never dies and is never reborn.
     //> move(p, e, dt);

@@ -46,9 +46,11 @@ constexpr float kPi = 3.14159265358979f;
 
 // LAB 1: the lecture's forward Euler step, L + Δs·(q − μ·L).
 // BEGIN LAB 1
+// slide: euler-step
 float eulerStep(float L, float mu, float q, float ds) {
     return L + ds * (q - mu * L);
 }
+// end slide: euler-step
 // STAND-IN
 //> // As handed out the step changes nothing: the left panel shows only the background.
 //> float eulerStep(float L, float mu, float q, float ds) {
@@ -58,6 +60,7 @@ float eulerStep(float L, float mu, float q, float ds) {
 // END LAB 1
 
 // BEGIN LAB 2
+// slide: exponential-step
 // LAB 2: the exponential step, exact for constant μ and q: L·e^{−μΔs} + (q/μ)·(1 − e^{−μΔs}), in a
 // form that stays finite for μ → 0 (the limit L + q·Δs).
 float exponentialStep(float L, float mu, float q, float ds) {
@@ -65,6 +68,7 @@ float exponentialStep(float L, float mu, float q, float ds) {
     if (x == 0.0f) return L + q * ds;
     return L * std::exp(-x) + q * ds * (-std::expm1(-x) / x);
 }
+// end slide: exponential-step
 // STAND-IN
 //> // LAB 2: the exponential step, exact for constant μ and q: L·e^{−μΔs} + (q/μ)·(1 − e^{−μΔs}), in a
 //> // form that stays finite for μ → 0 (the limit L + q·Δs). It must stay right where μ·Δs is large.
@@ -77,10 +81,12 @@ float exponentialStep(float L, float mu, float q, float ds) {
 
 // LAB 3: Henyey–Greenstein, per steradian: (1 − g²) / (4π·(1 + g² − 2g·cos θ)^{3/2}).
 // BEGIN LAB 3
+// slide: henyey-greenstein
 float henyeyGreenstein(float g, float cos_theta) {
     const float base = 1.0f + g * g - 2.0f * g * cos_theta;
     return (1.0f - g * g) / (4.0f * kPi * base * std::sqrt(base));
 }
+// end slide: henyey-greenstein
 // STAND-IN
 //> // cos θ = d·l, the view ray's direction (from the eye) against the direction towards the light.
 //> // (Check the exponent against the lecture's notes: the slide has an erratum.)

@@ -142,9 +142,11 @@ struct VsSpriteOwn {
     Corner operator()(const SpriteCornerIn& in) const {
         glm::vec4 corner = view * glm::vec4(in.centre, 1.0f);  // the centre in camera space
         // BEGIN LAB 2
+        // slide: own-transform
         // LAB 2: add the corner's offset in camera space, where x is the screen's right and y its up.
         corner.x += in.size * in.corner.x;
         corner.y += in.size * in.corner.y;
+        // end slide: own-transform
         // STAND-IN
         //> // LAB 2: add the corner's offset, (±size, ±size) from in.size and in.corner, in camera space,
         //> // where x is the screen's right and y its up. As handed out nothing is added: the six corners

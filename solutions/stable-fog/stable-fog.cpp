@@ -59,12 +59,14 @@ struct Medium {
 // may be +infinity (the sky).
 
 // BEGIN LAB 1
+// slide: fog-transmittance
 // LAB 1: the transmittance e^{−σ·τ}, per channel. σ = 0 transmits everything, even to τ = ∞.
 glm::vec3 transmittance(glm::vec3 sigma, float tau) {
     glm::vec3 t;
     for (int c = 0; c < 3; ++c) t[c] = sigma[c] == 0.0f ? 1.0f : std::exp(-(sigma[c] * tau));
     return t;
 }
+// end slide: fog-transmittance
 // STAND-IN
 //> // LAB 1: black fog — "zero source term" (q = 0): the medium only takes light away. Return the share
 //> // of L0 that reaches the eye over optical depth tau, e^{−σ·τ}, per channel. What must it be for a
@@ -77,6 +79,7 @@ glm::vec3 transmittance(glm::vec3 sigma, float tau) {
 // END LAB 1
 
 // BEGIN LAB 2
+// slide: fog-in-scattered
 // LAB 2: the light the medium adds over τ, (q/σ)·(1 − e^{−σ·τ}), per channel, stable: 1 − e^{−x} as
 // −expm1(−x) keeps thin fog's digits; σ = 0 is the limit q·τ (and 0 when q = 0, whatever τ).
 glm::vec3 inScattered(glm::vec3 sigma, glm::vec3 q, float tau) {
@@ -91,6 +94,7 @@ glm::vec3 inScattered(glm::vec3 sigma, glm::vec3 q, float tau) {
     }
     return l;
 }
+// end slide: fog-in-scattered
 // STAND-IN
 //> // LAB 2: the constant fog's closed form, its second term: the light the medium adds over optical
 //> // depth tau, (q/σ)·(1 − e^{−σ·τ}), per channel. In stable form: finite for σ = 0 (its limit as σ → 0),
@@ -108,6 +112,7 @@ glm::vec3 fogged(glm::vec3 L0, const Medium& m, float tau) {
 }
 
 // BEGIN LAB 4
+// slide: height-fog-depth
 // LAB 4: the height fog's optical depth per unit σ from height y0 along a unit direction whose y is
 // dy, over distance s (s may be ∞): τ(s) = (e^{b(y0 + dy·s)} − e^{b·y0}) / (b·dy), in stable form.
 // With k = b·dy: τ = e^{E}·g, E = b·y0 + max(k·s, 0), g = (1 − e^{−|k|·s})/|k| — the exponents
@@ -123,6 +128,7 @@ float opticalDepth(float y0, float dy, float s, float b) {
     const float half = std::exp(0.5f * exponent);  // e^E as (e^{E/2})², g between: no overflow alone
     return (g * half) * half;
 }
+// end slide: height-fog-depth
 // STAND-IN
 //> // LAB 4: the height fog's optical depth. σ(y) = σ·e^{b·y} and q(y) = q·e^{b·y} (b < 0: thinner
 //> // higher up) along the ray y(t) = y0 + dy·t (dy: the y of its unit direction) give the constant fog's

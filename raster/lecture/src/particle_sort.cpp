@@ -9,6 +9,7 @@
 
 namespace raster {
 
+// slide: depth-sort-key
 uint32_t depthSortKey(float depth) {
     if (depth != depth) return 0xFFFFFFFFu;
     const uint32_t bits = std::bit_cast<uint32_t>(depth == 0.0f ? 0.0f : depth);  // −0 → +0
@@ -18,6 +19,7 @@ uint32_t depthSortKey(float depth) {
     const uint32_t ascending = (bits & 0x80000000u) ? ~bits : (bits | 0x80000000u);
     return ~ascending;
 }
+// end slide: depth-sort-key
 
 namespace {
 

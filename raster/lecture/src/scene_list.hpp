@@ -70,6 +70,9 @@ std::unique_ptr<Scene> makeMediaFigureScene(std::string_view name, const SceneOp
 constexpr SceneCamera kCloudCamera{{0, 1.7f, 6}, {0, 3.0f, -4}};
 constexpr int kCloudCellVoxels = 16;
 std::unique_ptr<Scene> makeCloudScene(std::string_view name, const SceneOptions& options);
+// The slides' diagrams, phase-polar and media-march-steps (scene_slide_figures.cpp), drawn in clip space.
+std::vector<std::string_view> slideFigureNames();
+std::unique_ptr<Scene> makeSlideFigureScene(std::string_view name, const SceneOptions& options);
 std::unique_ptr<Scene> makeFireScene(const SceneOptions& options);
 std::unique_ptr<Scene> makeSmokeScene(const SceneOptions& options);  // scene_smoke.cpp
 std::unique_ptr<Scene> makeSpritesScene(const SceneOptions& options);

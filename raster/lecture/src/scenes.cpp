@@ -161,6 +161,7 @@ const std::vector<BuiltinScene>& builtinScenes() {
             list.push_back({name, name == "media-absorption" || name == "media-emission" ? kMediaFigureCamera
                                                                                          : kMediaPanelCamera,
                             makeMediaFigureScene});
+        for (std::string_view name : slideFigureNames()) list.push_back({name, kMediaMarchCamera, makeSlideFigureScene});
         for (std::string_view name : blendingSceneNames())
             list.push_back({name, kBlendCamera, makeBlendingScene});
         return list;
