@@ -79,6 +79,8 @@ void listScenes() {
         if (!figure) figure = fogFigureTitle(name);
         const char* title = name == "fire"        ? "the lecture's fire over the occluder, animated (a particle system)"
                             : name == "smoke"     ? "grey smoke blended over, sorted and soft against a box (animated)"
+                            : name == "smoke-volume"
+                                ? "the smoke's particles splatted into a voxel volume, ray marched with shadow rays (animated)"
                             : name == "sprites"
                                 ? "sprites three ways, rows top to bottom: (a) classic transforms, (b) own transform, "
                                   "(c) geometry shader, then turned to the eye; animated (try --fov 120)"

@@ -75,6 +75,8 @@ std::vector<std::string_view> slideFigureNames();
 std::unique_ptr<Scene> makeSlideFigureScene(std::string_view name, const SceneOptions& options);
 std::unique_ptr<Scene> makeFireScene(const SceneOptions& options);
 std::unique_ptr<Scene> makeSmokeScene(const SceneOptions& options);  // scene_smoke.cpp
+// The smoke's particles splatted into a voxel volume and ray marched (scene_smoke_volume.cpp).
+std::unique_ptr<Scene> makeSmokeVolumeScene(const SceneOptions& options);
 std::unique_ptr<Scene> makeSpritesScene(const SceneOptions& options);
 std::unique_ptr<Scene> makeForestScene(const SceneOptions& options);
 

@@ -16,6 +16,7 @@
 #include "raster/pipeline_impl.hpp"
 #include "scene_list.hpp"
 #include "smoke_shaders.hpp"
+#include "smoke_world.hpp"
 
 namespace raster {
 
@@ -23,8 +24,6 @@ namespace {
 
 static_assert(WidePixelShader<shaders::PsSmokeParticle> && WidePixelShader<shaders::PsComposite>);
 
-constexpr uint32_t kDefaultSmokeCount = 3000;
-constexpr double kDefaultSmokeTime = 8.0;  // seconds: the plume has crossed the box and the mean lifespan
 constexpr float kLifespanMin = 3.0f, kLifespanMax = 4.5f;
 constexpr float kAliveShare = 0.75f;  // of the slots, in the steady state (as the fire's)
 
@@ -74,6 +73,8 @@ Emitter smokeEmitter(uint32_t count) {
     return e;
 }
 
+}  // namespace
+
 ParticleSystemDesc smokeDesc(uint32_t count, uint64_t seed) {
     ParticleSystemDesc desc;
     desc.maxParticles = std::max(count, 1u);
@@ -89,6 +90,8 @@ ParticleSystemDesc smokeDesc(uint32_t count, uint64_t seed) {
     };
     return desc;
 }
+
+namespace {
 
 using shaders::LitIn;
 
@@ -119,26 +122,44 @@ std::vector<LitIn> smokeGeometry() {
     return v;
 }
 
+}  // namespace
+
+SmokeGround::SmokeGround(const glm::mat4& view_proj) {
+    vs.viewProj = view_proj;
+    const std::vector<LitIn> solid = smokeGeometry();
+    vertices = VertexBuffer::create(solid);
+    count = uint32_t(solid.size());
+    const InputElementDesc lit[] = {{"POSITION", 0, Format::R32G32B32_FLOAT, 0, 0},
+                                    {"NORMAL", 0, Format::R32G32B32_FLOAT, 0, 12}};
+    layout = InputLayout(lit);
+}
+
+void SmokeGround::render(Context& context, RenderTarget& color, DepthTarget& depth) const {
+    beginSceneFrame(context, color, depth);
+    context.setBlendState(BlendState::opaque());
+    context.setDepthStencilState({true, true, ComparisonFunc::Less});
+    context.setPrimitiveTopology(Topology::TriangleList);
+    context.setInputLayout(&layout);
+    context.setVertexBuffer(0, &vertices);
+    context.draw(vs, ps, count);
+}
+
+namespace {
+
 class SmokeScene final : public Scene {
   public:
     SmokeScene(const SceneOptions& o, const OffscreenParticles& mode)
-        : mode_(mode), system_(smokeDesc(o.count.value_or(kDefaultSmokeCount), o.seed)) {
+        : mode_(mode), system_(smokeDesc(o.count.value_or(kDefaultSmokeCount), o.seed)),
+          ground_(sceneProjection(o) * sceneView(o.camera.value_or(kSmokeCamera))) {
         const SceneCamera camera = o.camera.value_or(kSmokeCamera);
         const glm::mat4 proj = sceneProjection(o);
         const glm::mat4 view_proj = proj * sceneView(camera);
         eye_ = camera.eye;
         ahead_ = camera.target - camera.eye;
-        vs_solid_.viewProj = view_proj;
         gs_.viewProj = view_proj;
         gs_.projScale = {proj[0][0], proj[1][1]};
         ps_.inverseFadeDistance = 1.0f / mode.fadeDistance;
         ps_.soft = mode.soft;
-        const std::vector<LitIn> solid = smokeGeometry();
-        solid_ = VertexBuffer::create(solid);
-        solid_count_ = uint32_t(solid.size());
-        const InputElementDesc lit[] = {{"POSITION", 0, Format::R32G32B32_FLOAT, 0, 0},
-                                        {"NORMAL", 0, Format::R32G32B32_FLOAT, 0, 12}};
-        solid_layout_ = InputLayout(lit);
         const std::vector<glm::vec3> screen = {{-1, -1, 0}, {3, -1, 0}, {-1, 3, 0}};  // one triangle
         screen_ = VertexBuffer::create(screen);
         const InputElementDesc position[] = {{"POSITION", 0, Format::R32G32B32_FLOAT, 0, 0}};
@@ -159,13 +180,7 @@ class SmokeScene final : public Scene {
     double time() const override { return time_; }
 
     void render(Context& context, RenderTarget& color, DepthTarget& depth) override {
-        beginSceneFrame(context, color, depth);
-        context.setBlendState(BlendState::opaque());
-        context.setDepthStencilState({true, true, ComparisonFunc::Less});
-        context.setPrimitiveTopology(Topology::TriangleList);
-        context.setInputLayout(&solid_layout_);
-        context.setVertexBuffer(0, &solid_);
-        context.draw(vs_solid_, ps_solid_, solid_count_);
+        ground_.render(context, color, depth);
         if (uploadSorted() == 0) return;
         if (mode_.factor == 1) {
             drawParticles(context, DepthTexture(depth), overOpaque());  // into the frame, against its depth
@@ -216,15 +231,13 @@ class SmokeScene final : public Scene {
     OffscreenParticles mode_;
     ParticleSystem system_;
     glm::vec3 eye_{0.0f}, ahead_{0.0f, 0.0f, -1.0f};
-    VertexBuffer solid_, screen_, particles_;
-    uint32_t solid_count_ = 0;
-    InputLayout solid_layout_, screen_layout_, particle_layout_;
+    SmokeGround ground_;
+    VertexBuffer screen_, particles_;
+    InputLayout screen_layout_, particle_layout_;
     std::vector<Particle> staging_, sorted_;  // maxParticles each: what Map would return, and sorted
     std::vector<uint32_t> order_;
     SortScratch sort_scratch_;
     size_t alive_ = 0;
-    shaders::VsLit vs_solid_;
-    shaders::PsSolid ps_solid_;
     shaders::GsFireParticle gs_;
     shaders::PsSmokeParticle ps_;
     shaders::VsTransform vs_screen_;  // identity: the triangle is given in clip space

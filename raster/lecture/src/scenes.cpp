@@ -157,6 +157,7 @@ const std::vector<BuiltinScene>& builtinScenes() {
         list.push_back({"media", kMediaMarchCamera, makeNamed<makeMediaMarchScene>});
         list.push_back({"cloud", kCloudCamera, makeCloudChecked});
         list.push_back({"cloud-point", kCloudCamera, makeCloudChecked});
+        list.push_back({"smoke-volume", kSmokeCamera, makeNamed<makeSmokeVolumeScene>});
         for (std::string_view name : mediaFigureNames())
             list.push_back({name, name == "media-absorption" || name == "media-emission" ? kMediaFigureCamera
                                                                                          : kMediaPanelCamera,
