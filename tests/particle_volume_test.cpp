@@ -8,7 +8,9 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <random>
 #include <string>
@@ -20,6 +22,7 @@
 #include "raster/scenes.hpp"
 #include "raster/shaders/smoke_volume.hpp"
 #include "raster/thread_pool.hpp"
+#include "smoke_world.hpp"
 
 using namespace raster;
 using namespace raster::media;
@@ -112,8 +115,7 @@ TEST(SplatKernel, PeaksAtTheCentreFallsAndEndsAtItsRadius) {
         EXPECT_LT(w, previous) << "r = " << radius * float(i) / 1000.0f;
         previous = w;
     }
-    EXPECT_EQ(splatKernel(radius, radius), 0.0f);
-    EXPECT_EQ(splatKernel(1.5f * radius, radius), 0.0f);
+    for (int i = 0; i <= 1000; ++i) EXPECT_EQ(splatKernel(radius * (1.0f + float(i) / 1000.0f), radius), 0.0f);
     // The two pieces meet at r = R/2 (value 2/(πR³)).
     EXPECT_NEAR(splatKernel(0.5 * 0.4 - 1e-12, 0.4), splatKernel(0.5 * 0.4 + 1e-12, 0.4), 1e-9);
 }
@@ -192,7 +194,8 @@ TEST(ParticleVolume, SameBitsForAnyThreadCountAndSlab) {
 }
 
 TEST(ParticleVolume, FittedGridHoldsEverySplatWhole) {
-    const std::vector<ParticleSplat> splats = randomSplats(50, 4);
+    std::vector<ParticleSplat> splats = randomSplats(50, 4);
+    splats.push_back({{2.0f, -2.0f, 2.0f}, 0.0f, 0.1f});  // a point, at a corner: widened to two voxels
     const SplatGrid grid = fitSplatGrid(splats, 64);
     const glm::vec3 cell = grid.cellSize();
     EXPECT_EQ(std::max({grid.dims.x, grid.dims.y, grid.dims.z}), 64);
@@ -319,4 +322,27 @@ TEST(SmokeVolumeScene, MarchEndsAtTheSurface) {
         const float inside = std::clamp(surface, 2.0f, 3.0f) - 2.0f;  // metres of medium before it
         EXPECT_NEAR(1.0f - c.a, std::exp(-0.05f * float(n) * inside), 1e-4f) << "surface at " << surface;
     }
+}
+
+// The scene's own volume (the smoke's particles at its default count and time, the default grid):
+// its voxels plus little (the majorant and the objects), and the particles' mass whole.
+TEST(SmokeVolumeScene, VolumeTakesItsVoxelsPlusLittleAndCarriesTheParticlesMass) {
+    ParticleSystem system(smokeDesc(kDefaultSmokeCount, 0));
+    system.advance(kDefaultSmokeTime);
+    const std::vector<Particle> particles = system.vertices();
+    const auto start = std::chrono::steady_clock::now();
+    const SmokeVolume smoke = makeSmokeVolume(particles, int(kDefaultSmokeVoxels));
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    const CloudVolume& v = smoke.volume;
+    const glm::ivec3 n = v.grid.dims();
+    EXPECT_EQ(std::max({n.x, n.y, n.z}), int(kDefaultSmokeVoxels));
+    EXPECT_EQ(v.voxelBytes(), uint64_t(n.x) * n.y * n.z * sizeof(float));
+    EXPECT_LE(double(v.memoryBytes()), double(v.voxelBytes()) * 1.15);
+    std::printf("smoke-volume: %zu particles, %dx%dx%d voxels, %llu bytes of voxels, %llu in all; splatted in %.0f ms\n",
+                particles.size(), n.x, n.y, n.z, (unsigned long long)v.voxelBytes(),
+                (unsigned long long)v.memoryBytes(), ms);
+    double mass = 0.0;
+    for (const ParticleSplat& s : particleSplats(particles, kOpticalDepthPerOpacity, kRadiusPerSize)) mass += s.mass;
+    EXPECT_GT(mass, 0.0);
+    EXPECT_NEAR(gridMass(v.grid), mass, mass * 0.005);
 }

@@ -95,7 +95,9 @@ SplatGrid fitSplatGrid(std::span<const ParticleSplat> splats, int longest) {
     const float cell = widest > 0.0f ? widest / float(longest - 2 * kPad) : 1.0f;  // one point: voxels of 1 m
     SplatGrid g;
     for (int a = 0; a < 3; ++a) {
-        g.dims[a] = std::max(1, int(std::ceil(extent[a] / cell))) + 2 * kPad;
+        // At most longest − 2·kPad inside the padding (the widest axis: exactly, whatever the rounding of
+        // extent/cell; a rounding short of the extent is within the padding's spare voxel).
+        g.dims[a] = std::clamp(int(std::ceil(extent[a] / cell)), 1, longest - 2 * kPad) + 2 * kPad;
         g.bounds.lo[a] = lo[a] - float(kPad) * cell;
         g.bounds.hi[a] = g.bounds.lo[a] + float(g.dims[a]) * cell;
     }

@@ -25,13 +25,6 @@ namespace raster {
 
 namespace {
 
-constexpr uint32_t kDefaultSmokeVoxels = 192;  // along the grid's longest axis
-// A particle's splat (particle_volume.hpp): its support radius per unit of the particle's size (the
-// billboard's half-width), and its optical depth averaged over its disc per unit of opacity.
-constexpr float kRadiusPerSize = 1.5f;
-constexpr float kOpticalDepthPerOpacity = 0.3f;
-constexpr int kSmokeCellVoxels = 8;  // majorant cells' edge, voxels
-
 // The smoke scene's light (shaders::PsSolid: the direction, a warm sun) as a volume light: grey smoke,
 // mostly scattering, a little forward.
 media::VolumeLight smokeLight() {
@@ -43,6 +36,22 @@ media::VolumeLight smokeLight() {
     light.albedo = 0.9f;
     return light;
 }
+
+}  // namespace
+
+SmokeVolume makeSmokeVolume(std::span<const Particle> particles, int longest) {
+    const std::vector<media::ParticleSplat> splats =
+        media::particleSplats(particles, kOpticalDepthPerOpacity, kRadiusPerSize);
+    const media::SplatGrid grid = media::fitSplatGrid(splats, longest);
+    SmokeVolume v;
+    v.origin = grid.bounds.lo;
+    v.voxelsPerMetre = float(grid.dims.x) / (grid.bounds.hi.x - grid.bounds.lo.x);  // cubic voxels
+    // The grid holds extinction in 1/m; the march takes it per voxel.
+    v.volume = media::makeCloudVolume(media::splatParticles(splats, grid), 1.0f / v.voxelsPerMetre, kSmokeCellVoxels);
+    return v;
+}
+
+namespace {
 
 class SmokeVolumeScene final : public Scene {
 public:
@@ -82,25 +91,18 @@ protected:
     }
 
 private:
-    // The living particles into the volume, the shader's frame to match: the grid's voxels are cubes,
-    // so one scale maps the world to them.
+    // The living particles into the volume, and the shader's frame to match.
     void splat() {
-        const std::vector<Particle> particles = system_.vertices();
-        const std::vector<media::ParticleSplat> splats = media::particleSplats(particles, kOpticalDepthPerOpacity, kRadiusPerSize);
-        const media::SplatGrid grid = media::fitSplatGrid(splats, voxels_);
-        const float voxels_per_metre = float(grid.dims.x) / (grid.bounds.hi.x - grid.bounds.lo.x);
-        // The grid holds extinction in 1/m; the march takes it per voxel.
-        volume_ = media::makeCloudVolume(media::splatParticles(splats, grid), 1.0f / voxels_per_metre,
-                                         kSmokeCellVoxels);
-        ps_.march.origin = grid.bounds.lo;
-        ps_.march.voxelsPerMetre = voxels_per_metre;
-        ps_.march.volume = &volume_;
+        smoke_ = makeSmokeVolume(system_.vertices(), voxels_);
+        ps_.march.origin = smoke_.origin;
+        ps_.march.voxelsPerMetre = smoke_.voxelsPerMetre;
+        ps_.march.volume = &smoke_.volume;
     }
 
     ParticleSystem system_;
     int voxels_;
     double time_ = 0.0;
-    media::CloudVolume volume_;
+    SmokeVolume smoke_;
     SmokeGround ground_;
     FullScreenTriangle triangle_;
     shaders::VsMediaRay vs_;
