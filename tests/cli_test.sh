@@ -252,7 +252,8 @@ cmp -s "$tmp/frames/fire.png" "$tmp/frames/fire_0001.png" || fail "frame 1 from 
 ! cmp -s "$tmp/frames/fire_0000.png" "$tmp/frames/fire_0001.png" || fail "frames 0 and 1 of the fire are the same"
 # --frames without a scene: the animated ones only.
 run 0 render --frames 1 --width 16 --height 16 --out-dir "$tmp/anim"
-animated="fire_0000.png forest_0000.png particle-system@solution_0000.png particle-system_0000.png smoke_0000.png"
+animated="fire_0000.png forest_0000.png particle-system@solution_0000.png particle-system_0000.png smoke-volume_0000.png"
+animated+=" smoke_0000.png"
 animated+=" sprite-methods@solution_0000.png sprite-methods_0000.png sprites_0000.png "
 [[ $(LC_ALL=C ls "$tmp/anim" | tr '\n' ' ') == "$animated" ]] ||
   fail "render --frames 1 wrote $(ls "$tmp/anim")"
