@@ -115,6 +115,26 @@ bad --source "" render media-closed-form --source
 # Accepted by the option, refused by the scene: q/sigma must be a finite float (the fog's colour).
 run 1 render fog-constant --sigma 1e-30 --source 1e9 --width 8 --height 8 --out-dir "$tmp/png"
 says "fog source 1e+09 over sigma 1e-30 (channel R) is not a finite float"
+# The volume light of the media and cloud scenes (--light point:X,Y,Z or dir:X,Y,Z, --light-intensity):
+# each number finite, a direction not 0, three numbers; a scene without a volume light refuses it.
+bad --light "--light: 'point:1,2' needs three numbers" render media --light point:1,2
+bad --light "--light: 'dir:1,2,3,4' needs three numbers" render media --light dir:1,2,3,4
+bad --light "--light: takes point:X,Y,Z or dir:X,Y,Z, not 'sun:1,2,3'" render media --light sun:1,2,3
+bad --light "--light: takes point:X,Y,Z or dir:X,Y,Z, not '1,2,3'" render cloud --light 1,2,3
+bad --light "--light: nan is not a number" render media --light point:1,nan,2
+bad --light "--light: inf is infinite" trace media --stats --light dir:inf,1,0
+bad --light "--light: -inf is infinite" view media --light point:0,-inf,0
+bad --light "--light: 'x' is not a number" bench media --light point:x,1,2
+bad --light "--light: 1e+39 is too large for a float" render media --light point:1e39,0,0
+bad --light "--light: 'dir:0,0,0': the direction (0, 0, 0) has no length" render media --light dir:0,0,0
+bad --light "" render media --light
+bad --light-intensity "--light-intensity: -1 is negative" render media --light-intensity -1
+bad --light-intensity "--light-intensity: nan is not a number" render cloud --light-intensity 1,nan,1
+# Accepted by the option, refused by the scene: it has no volume light.
+run 1 render fog --light point:0,2,0 --width 8 --height 8 --out-dir "$tmp/png"
+says "light: scene 'fog' has no volume light (the scenes with one: media, cloud, cloud-point)"
+run 1 render fire --light-intensity 2 --width 8 --height 8 --out-dir "$tmp/png"
+says "light: scene 'fire' has no volume light"
 bad --seed -1 bench fire --seed -1
 bad --frames "static" render fog --frames 2
 bad --list maybe render --list=maybe
@@ -194,7 +214,7 @@ helps() {
 helps bench --width --height --fov --count --seed --cubes --fog --time --texture --frames --threads --out --reference --plain \
   --no-error --turbulence particles-sim
 helps render --out-dir --width --height --fov --count --seed --time --frames --fps --reference --plain --view --list \
-  --sigma --source --falloff
+  --sigma --source --falloff --light --light-intensity
 helps trace --stats --pixel --json --draw --limit --width --height --fov --count --seed --cubes --fog --threads --reference --plain
 helps view --size --count --seed --cubes --fog --threads --reference --plain --headless --script --screenshot-dir \
   --screenshot-window --solution "keys:"
@@ -233,6 +253,20 @@ if ((max == 0)); then [[ $error == *mean_abs=0.0000* ]] || fail "max_diff 0 but 
 run 0 render fog-constant fog-height media-closed-form --sigma 0.05,0,0.07 --source 0.03,0.004,0.05 --falloff 0 \
   --width 48 --height 27 --cubes 2 --out-dir "$tmp/png"
 [[ $(png_size "$tmp/png/fog-height.png") == 48x27 ]] || fail "render fog-height with a medium wrote no picture"
+# A point light in the media scene: the same picture at 1, 2 and 8 threads; SCENES.md's own light given
+# as --light is the scene's picture; the cloud with a point light and an intensity renders.
+for threads in 1 2 8; do
+  run 0 render media --light point:0.8,1.6,0.6 --light-intensity 30,28,24 --width 64 --height 36 --threads "$threads" \
+    --out-dir "$tmp/light$threads"
+done
+cmp -s "$tmp/light1/media.png" "$tmp/light2/media.png" || fail "media --light point: 1 and 2 threads differ"
+cmp -s "$tmp/light1/media.png" "$tmp/light8/media.png" || fail "media --light point: 1 and 8 threads differ"
+run 0 render media --width 64 --height 36 --out-dir "$tmp/own"
+run 0 render media --light dir:0.4,1,0.3 --width 64 --height 36 --out-dir "$tmp/own-as-option"
+cmp -s "$tmp/own/media.png" "$tmp/own-as-option/media.png" ||
+  fail "media --light dir:0.4,1,0.3 is not the scene's picture"
+cmp -s "$tmp/own/media.png" "$tmp/light1/media.png" && fail "media --light point: the scene's own picture"
+run 0 render cloud cloud-point --light point:0,2,-3 --voxels 32 --width 48 --height 27 --out-dir "$tmp/png"
 # The particle simulation alone: --count particles, all alive, stepped --frames times.
 run 0 bench particles-sim --count 5000 --frames 3 --threads 2 --turbulence
 grep -q '^threads=2 alive=5000 ' "$tmp/out" || fail "bench particles-sim printed: $(cat "$tmp/out")"

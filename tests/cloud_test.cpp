@@ -390,3 +390,32 @@ TEST(CloudScene, PointLitCloudSameBitsAtOneTwoAndEightThreads) {
     for (size_t p = 0; p < one.size(); p += 4) lit += one[p] > 60;
     EXPECT_GT(lit, one.size() / 4 / 200);
 }
+
+TEST(CloudScene, PointLightInTheSunsPlaceLightsTheGround) {
+    // `cloud` with a point light 0.6 m above the ground near the eye: the same bits at 1, 2 and
+    // 8 threads; the ground near it brighter than the same light at intensity 0 (the ambient term
+    // alone), by more on the pixels nearer the light: its 1/r² falloff.
+    SceneOptions o = smallCloud();
+    o.light = SceneLight{true, {0.0f, 0.6f, 1.0f}};
+    o.lightIntensity = glm::vec3(6.0f);
+    const std::vector<uint8_t> lit = renderBytes("cloud", o, 1);
+    EXPECT_EQ(renderBytes("cloud", o, 2), lit);
+    EXPECT_EQ(renderBytes("cloud", o, 8), lit);
+    o.lightIntensity = glm::vec3(0.0f);
+    const std::vector<uint8_t> dark = renderBytes("cloud", o, 2);
+    // The ground below the light: the bottom rows, middle columns; farther: the rows above them.
+    auto brighter = [&](uint32_t y0, uint32_t y1) {
+        double sum = 0.0;
+        uint32_t n = 0;
+        for (uint32_t y = y0; y < y1; ++y)
+            for (uint32_t x = 60; x < 100; ++x, ++n) {
+                const size_t p = (size_t(y) * o.width + x) * 4;
+                sum += double(lit[p + 1]) - double(dark[p + 1]);
+            }
+        return sum / n;
+    };
+    const double near = brighter(80, 90), far = brighter(55, 62);
+    EXPECT_GT(near, 8.0) << "the ground under the light should be lit";
+    EXPECT_GT(near, 2.0 * far) << "nearer the light, brighter";
+    for (size_t p = 0; p < lit.size(); ++p) ASSERT_GE(lit[p] + 1, dark[p]) << "a light that darkens, byte " << p;
+}

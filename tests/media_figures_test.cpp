@@ -146,7 +146,7 @@ TEST(MediaFigures, RayleighScattersForwardAndBackwardAlike) {
         const auto ratio = [&](PhaseFunction phase, const glm::vec3& to_light) {
             FigureMedium m = medium;
             m.phase = phase, m.g = 0.7f;
-            const FigureLight light{to_light, glm::vec3(1.0f), glm::vec3(0.0f)};
+            const VolumeLight light{to_light, glm::vec3(1.0f), glm::vec3(0.0f)};
             const float a = marchFigure(volume, m, light, march, eye, d, glm::vec3(0.0f)).x;
             m.phase = PhaseFunction::isotropic;
             return double(a) / double(marchFigure(volume, m, light, march, eye, d, glm::vec3(0.0f)).x);
@@ -197,7 +197,8 @@ TEST(MediaFigures, EulerLeavesTheUnitIntervalOnlyWhereMuDeltaSExceedsOne) {
     const MetaballVolume volume = figureVolume();
     FigureMedium medium;
     medium.absorption = glm::vec3(12.0f), medium.emission = glm::vec3(9.6f);
-    const FigureLight light;
+    VolumeLight light;
+    light.sun = glm::vec3(0.0f);
     const uint32_t steps = 8;
     size_t out_of_range = 0, stable_rays = 0;
     float largest_step = 0.0f;

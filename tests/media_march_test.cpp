@@ -185,7 +185,8 @@ TEST(ShadowRay, SkippingFarBallsChangesNoBit) {
         MarchSettings settings;
         settings.shadowSteps = r % 2 ? 6 : 11;
         MarchResult counts;
-        const float tau = media::detail::shadowDepth(v, light, 1.0f / light.toLight, settings, x, counts);
+        const float exit = media::detail::exitDistance(v.box, x, light.toLight, 1.0f / light.toLight);
+        const float tau = media::detail::shadowDepth(v, settings, x, light.toLight, exit, counts);
         const float dl = slabInterval(v.box, x, light.toLight).second / float(settings.shadowSteps);
         float expected = 0.0f;
         for (uint32_t j = 0; j < settings.shadowSteps; ++j)
@@ -275,4 +276,157 @@ TEST(MediaScene, SameBitsAtOneTwoAndEightThreads) {
             EXPECT_EQ(bytes, first) << threads << " threads";
         }
     }
+}
+
+namespace {
+
+// Six balls: one of radius 0.05 m at the origin, the other five far outside the box (never sampled).
+MetaballVolume smallBallVolume(float extinction_scale) {
+    std::array<Metaball, 6> balls;
+    balls[0] = {glm::vec3(0.0f), 0.05f};
+    for (size_t k = 1; k < 6; ++k) balls[k] = {glm::vec3(50.0f + float(k), 50.0f, 50.0f), 0.01f};
+    return makeMetaballVolume(balls, Box{glm::vec3(-0.1f), glm::vec3(0.1f)}, extinction_scale, 4);
+}
+
+VolumeLight pointLightAt(const glm::vec3& position, const glm::vec3& intensity, float g = 0.0f) {
+    VolumeLight light;
+    light.kind = LightKind::point;
+    light.position = position, light.intensity = intensity;
+    light.g = g, light.albedo = 0.8f;
+    return light;
+}
+
+std::vector<uint8_t> renderMedia(const SceneOptions& o, uint32_t threads) {
+    auto scene = makeScene("media", o);
+    Context context({threads});
+    RenderTarget color(o.width, o.height);
+    DepthTarget depth(o.width, o.height);
+    scene->render(context, color, depth);
+    return {color.rgba8(), color.rgba8() + size_t(o.width) * o.height * 4};
+}
+
+}  // namespace
+
+TEST(PointLight, MetaballMarchFallsOffAsInverseSquare) {
+    // An optically thin ball 0.05 m across (μ ≤ 1e-3/m: every shadow transmittance within 1e-4 of 1),
+    // the isotropic phase 1/(4π), no ambient: L = Σ_i w_i·albedo·(1/4π)·I/r_i², w_i = T_i·(1 − e^{−μ_iΔs})
+    // the share sample i scatters towards the eye and r_i its distance to the light (computed here
+    // from the samples' positions, in double); and L·R² the same for every distance R of the light.
+    const MetaballVolume v = smallBallVolume(1e-3f);
+    const glm::vec3 eye{0.0f, 0.0f, 5.0f}, d{0.0f, 0.0f, -1.0f}, intensity{8.0f, 4.0f, 2.0f};
+    const glm::vec3 side = glm::normalize(glm::vec3(1.0f, 0.6f, 0.2f));
+    double scaled_first = 0.0;
+    for (float r : {1.0f, 2.0f, 4.0f, 16.0f}) {
+        for (int s : {1, -1}) {  // on either side of the ball
+            const VolumeLight light = pointLightAt(side * (float(s) * r), intensity);
+            double expected = 0.0;  // per unit intensity
+            const MarchResult m = marchMetaballs(v, light, MarchSettings{}, eye, d, [&](const MarchSample& x) {
+                const glm::dvec3 p = glm::dvec3(eye) + glm::dvec3(d) * double(x.s);
+                const glm::dvec3 to_light = glm::dvec3(light.position) - p;
+                const double w = double(x.transmittance) * -std::expm1(-double(x.opticalStep));
+                expected += w * 0.8 / (4.0 * M_PI) / glm::dot(to_light, to_light);
+            });
+            ASSERT_GT(expected, 0.0);
+            for (int c = 0; c < 3; ++c)
+                EXPECT_NEAR(m.radiance[c], expected * intensity[c], expected * intensity[c] * 1e-3)
+                    << "R " << r << " channel " << c;
+            const double scaled = double(m.radiance.x) * r * r;
+            if (scaled_first == 0.0) scaled_first = scaled;
+            EXPECT_NEAR(scaled, scaled_first, scaled_first * 4e-3) << "L·R² at R " << r;
+        }
+    }
+}
+
+TEST(PointLight, MetaballShadowRayEndsAtTheLight) {
+    // The light inside the ball, 0.01 m off the view ray: each sample's shadow transmittance is
+    // e^{−τ} with τ the optical depth from the sample to the light alone (a fine sum here), not on to
+    // the box's side; 64 shadow steps leave the midpoint rule's error far below the tolerance.
+    const MetaballVolume v = smallBallVolume(100.0f);
+    const glm::vec3 eye{0.0f, 0.0f, 5.0f}, d{0.0f, 0.0f, -1.0f}, at{0.0f, 0.01f, 0.0f};
+    MarchSettings settings;
+    settings.shadowSteps = 64;
+    uint32_t checked = 0;
+    double deepest = 0.0;
+    marchMetaballs(v, pointLightAt(at, glm::vec3(1.0f)), settings, eye, d, [&](const MarchSample& s) {
+        if (!(s.extinction > 0.0f)) return;
+        const glm::vec3 x = eye + d * s.s;
+        double tau = 0.0;
+        constexpr int kSteps = 4096;
+        for (int j = 0; j < kSteps; ++j)
+            tau += double(v.extinction(x + (at - x) * ((float(j) + 0.5f) / float(kSteps)), 0x3fu)) / kSteps;
+        tau *= double(glm::length(at - x));
+        deepest = std::max(deepest, tau);
+        EXPECT_NEAR(s.shadowTransmittance, std::exp(-tau), 2e-3) << "sample " << s.index;
+        ++checked;
+    });
+    EXPECT_GT(checked, 3u);
+    EXPECT_GT(deepest, 0.5) << "the shadow rays should cross some of the ball";
+}
+
+TEST(PointLight, FarAwayItIsTheDirectionalLightInTheMediaScene) {
+    // A point light R metres away along the scene's toLight, intensity E·R², against the directional
+    // light E: the same radiance to the light's spread over the box (its direction varies by 2/R
+    // radians, its irradiance by 2·2/R).
+    const MetaballVolume v = sceneVolume();
+    const VolumeLight sun = sceneLight();
+    constexpr float kR = 1e4f;
+    VolumeLight point = sun;
+    point.kind = LightKind::point;
+    point.position = sun.toLight * kR;
+    point.intensity = sun.sun * (kR * kR);
+    const glm::mat4 inv_vp = sceneInverseViewProj(64, 36);
+    float worst = 0.0f, largest = 0.0f;
+    for (uint32_t y = 0; y < 36; y += 3)
+        for (uint32_t x = 0; x < 64; x += 3) {
+            const glm::vec3 d = shaders::viewRay(inv_vp, pixelNdc(x, y, 64, 36));
+            const MarchResult a = marchMetaballs(v, sun, MarchSettings{}, kEye, d);
+            const MarchResult b = marchMetaballs(v, point, MarchSettings{}, kEye, d);
+            EXPECT_EQ(a.transmittance, b.transmittance);
+            for (int c = 0; c < 3; ++c) {
+                worst = std::max(worst, std::abs(a.radiance[c] - b.radiance[c]));
+                largest = std::max(largest, a.radiance[c]);
+            }
+        }
+    EXPECT_GT(largest, 0.3f);
+    EXPECT_LT(worst, 2e-3f * largest);
+}
+
+TEST(MediaScene, LightOptionAsTheScenesOwnGivesItsBits) {
+    // --light dir:0.4,1,0.3 is SCENES.md's light: the default picture's bits; another direction, or a
+    // point light, changes it; a point light's picture is the same at 1, 2 and 8 threads.
+    SceneOptions o{.width = 160, .height = 90};
+    const std::vector<uint8_t> own = renderMedia(o, 2);
+    o.light = SceneLight{false, {0.4f, 1.0f, 0.3f}};
+    EXPECT_EQ(renderMedia(o, 2), own);
+    o.light = SceneLight{false, {-0.4f, 1.0f, 0.3f}};
+    EXPECT_NE(renderMedia(o, 2), own);
+    o.light = SceneLight{true, {0.8f, 1.6f, 0.6f}};
+    const std::vector<uint8_t> point = renderMedia(o, 1);
+    EXPECT_NE(point, own);
+    EXPECT_EQ(renderMedia(o, 2), point);
+    EXPECT_EQ(renderMedia(o, 8), point);
+}
+
+TEST(MediaScene, LightOptionRefusedWhereNoVolumeLight) {
+    SceneOptions o{.width = 16, .height = 16};
+    o.light = SceneLight{true, {0.0f, 2.0f, 0.0f}};
+    try {
+        makeScene("fog", o);
+        ADD_FAILURE() << "the fog scene took a volume light";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("light: scene 'fog' has no volume light"), std::string::npos) << e.what();
+    }
+    o.light = SceneLight{false, {0.0f, 0.0f, 0.0f}};
+    try {
+        makeScene("media", o);
+        ADD_FAILURE() << "a direction of length 0 taken";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("light: the direction (0, 0, 0) has no length"), std::string::npos)
+            << e.what();
+    }
+    const Box box = mediaSceneBox();
+    o.light = SceneLight{true, 0.5f * (box.lo + box.hi)};  // the medium's centre, no intensity given
+    EXPECT_THROW(makeScene("media", o), Error);
+    o.lightIntensity = glm::vec3(1.0f);
+    EXPECT_NO_THROW(makeScene("media", o));
 }

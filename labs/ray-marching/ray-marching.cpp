@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "raster/lab.hpp"
+#include "raster/media/scatter_march.hpp"
 
 namespace {
 
@@ -105,21 +106,37 @@ float shadowTransmittance(const Medium& m, const glm::vec3& x) {
 }
 
 // The radiance reaching the eye along d: N steps back to front from the box's far side (background
-// L_bg) to its near side, each sampled at its midpoint, with source q = μ·albedo·(p·T_l·E + A).
+// L_bg) to its near side, each sampled at its midpoint, with source q = μ·albedo·(p·T_l·E + A). The
+// loop is the library's (raster/media/scatter_march.hpp: the one the `media` benchmark scene runs);
+// what it marches through, how the light scatters and how a step moves L are this file's places.
+struct Places {
+    const Medium& m;
+    bool euler;  // the step: Euler's (left panel) or the exponential one (right panel)
+
+    Float8 extinction8(Float8 x, Float8 y, Float8 z) const {
+        Float8 mu(0.0f);
+        for (int l = 0; l < 8; ++l) mu.set(l, m.extinctionScale * density(m.balls, {x[l], y[l], z[l]}));
+        return mu;
+    }
+    float phase(float cos_theta) const { return henyeyGreenstein(m.g, cos_theta); }
+    // The shadow ray from each sample of `lanes` (bit l: lane l), one that scatters.
+    Float8 shadowTransmittance8(const std::array<Float8, 3>& x, uint32_t lanes, const media::LightAtPoint*) const {
+        Float8 t(1.0f);
+        for (int l = 0; l < 8; ++l)
+            if (lanes >> l & 1u) t.set(l, shadowTransmittance(m, {x[0][l], x[1][l], x[2][l]}));
+        return t;
+    }
+    float step(float L, float mu, float q, float ds) const {
+        return euler ? eulerStep(L, mu, q, ds) : exponentialStep(L, mu, q, ds);
+    }
+};
+
 glm::vec3 march(const Medium& m, const glm::vec3& eye, const glm::vec3& d, glm::vec3 L, bool euler) {
     const auto [t_near, t_far] = boxInterval(m, eye, d);
     const float t0 = std::max(t_near, 0.0f);
     if (!(t0 < t_far)) return L;
-    const float ds = (t_far - t0) / float(m.steps);
-    const float phase = henyeyGreenstein(m.g, glm::dot(d, m.toLight));
-    for (uint32_t i = 0; i < m.steps; ++i) {
-        const glm::vec3 x = eye + (t_far - (float(i) + 0.5f) * ds) * d;
-        const float mu = m.extinctionScale * density(m.balls, x);
-        if (mu == 0.0f) continue;  // nothing absorbed, nothing added
-        const glm::vec3 q = mu * m.albedo * (phase * shadowTransmittance(m, x) * m.sun + m.ambient);
-        for (int c = 0; c < 3; ++c) L[c] = euler ? eulerStep(L[c], mu, q[c], ds) : exponentialStep(L[c], mu, q[c], ds);
-    }
-    return L;
+    const media::VolumeLight light{m.toLight, m.sun, m.ambient, m.g, m.albedo};
+    return media::marchTowardsTheEye(Places{m, euler}, light, eye, d, t0, t_far, m.steps, L);
 }
 
 // The `media` scene's six balls (SCENES.md): c_j = frac(0.5 + (k+1)·a_j), centre

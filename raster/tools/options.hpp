@@ -229,7 +229,84 @@ inline void addFogMediumOptions(CLI::App& command, SceneOptions& options) {
         "height fog: its density falls as e^(-B*y), B >= 0 per metre");
 }
 
-// --count, --seed, --cubes, --fog, --sigma, --source, --falloff: what the lecture's scenes and the
+// --light KIND:X,Y,Z: "point:X,Y,Z" (a point light at X,Y,Z, world metres) or "dir:X,Y,Z" (a directional
+// light towards X,Y,Z, any length), into out. Returns "" or what is wrong: "takes point:X,Y,Z or
+// dir:X,Y,Z, not 'x'", "'point:1,2' needs three numbers", "'x' is not a number", "nan is not a number",
+// "inf is infinite", "'dir:0,0,0': the direction (0, 0, 0) has no length".
+inline std::string readSceneLight(const std::string& text, SceneLight& out) {
+    const size_t colon = text.find(':');
+    const std::string kind = text.substr(0, colon);
+    if (colon == std::string::npos || (kind != "point" && kind != "dir"))
+        return "takes point:X,Y,Z or dir:X,Y,Z, not '" + text + "'";
+    std::vector<std::string> parts(1);
+    for (const char c : text.substr(colon + 1)) {
+        if (c == ',')
+            parts.emplace_back();
+        else
+            parts.back().push_back(c);
+    }
+    if (parts.size() != 3) return "'" + text + "' needs three numbers";
+    SceneLight light;
+    light.point = kind == "point";
+    for (size_t i = 0; i < 3; ++i) {
+        double value = 0.0;
+        size_t used = 0;
+        try {
+            value = std::stod(parts[i], &used);
+        } catch (const std::out_of_range&) {
+            return "'" + parts[i] + "' is too large for a float";
+        } catch (const std::exception&) {
+            used = 0;
+        }
+        if (used == 0 || used != parts[i].size() || parts[i].find_first_of(" \t") != std::string::npos)
+            return "'" + parts[i] + "' is not a number";
+        if (const std::string problem = finiteValueProblem(value); !problem.empty()) return problem;
+        light.value[int(i)] = float(value);
+    }
+    if (const std::string problem = sceneLightProblem(light); !problem.empty()) return "'" + text + "': " + problem;
+    out = light;
+    return "";
+}
+
+// --light point:X,Y,Z or dir:X,Y,Z, --light-intensity R,G,B: the volume light of the media and cloud
+// scenes (SceneOptions::light, lightIntensity).
+inline void addLightOptions(CLI::App& command, SceneOptions& options) {
+    command
+        .add_option_function<std::string>(
+            "--light",
+            [&options](const std::string& text) {
+                SceneLight light;
+                readSceneLight(text, light);
+                options.light = light;
+            },
+            "media, cloud: the volume light, a point light at X,Y,Z (metres) or a directional one towards X,Y,Z")
+        ->check(CLI::Validator(
+            [](std::string& text) {
+                SceneLight light;
+                return readSceneLight(text, light);
+            },
+            ""))
+        ->type_name("point:X,Y,Z|dir:X,Y,Z");
+    command
+        .add_option_function<std::string>(
+            "--light-intensity",
+            [&options](const std::string& text) {
+                float v[3] = {};
+                readFogValues(text, 3, v);
+                options.lightIntensity = glm::vec3(v[0], v[1], v[2]);
+            },
+            "media, cloud: a point light's intensity I (per steradian; irradiance I/r^2 at r metres) or a "
+            "directional one's irradiance, R,G,B or one number (unset: the scene's medium lit as by its own)")
+        ->check(CLI::Validator(
+            [](std::string& text) {
+                float v[3] = {};
+                return readFogValues(text, 3, v);
+            },
+            ""))
+        ->type_name("R,G,B");
+}
+
+// --count, --seed, --cubes, --fog, --sigma, --source, --falloff, --light: what the lecture's scenes and the
 // labs hold (bench, render, trace, view).
 inline void addContentOptions(CLI::App& command, SceneOptions& options) {
     addOptionalWholeNumber(command, "--count", options.count, 0, 50'000'000,
@@ -249,6 +326,7 @@ inline void addContentOptions(CLI::App& command, SceneOptions& options) {
         ->check(CLI::IsMember({"constant", "height"}))
         ->default_str(options.heightFog ? "height" : "constant");
     addFogMediumOptions(command, options);
+    addLightOptions(command, options);
 }
 
 // --time T: an animated scene's start time (bench, render). Static scenes ignore it.

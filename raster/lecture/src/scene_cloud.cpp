@@ -14,7 +14,12 @@
 //
 // `cloud-point`: the same cloud at night, lit from below by a point light (kPointLight: a lamp under
 // it) with inverse-square falloff and shadow rays that end at the light, over a plain
-// night sky; no ground (its shading knows only the sun) and no fog.
+// night sky; no ground and no fog.
+//
+// --light and --light-intensity (SceneOptions::light) put another light in place of either scene's
+// (scene_light.hpp), the cloud's centre the point whose irradiance a light of the other kind keeps;
+// `cloud`'s ground is then lit by it too (PsCloudGround: the sun's direction, or the point light with
+// its falloff and the cloud's shadow).
 //
 // Empty space is skipped through a majorant grid of kCloudCellVoxels³-voxel cells
 // (docs/PERFORMANCE.md, "cloud": the cell size measured).
@@ -26,6 +31,7 @@
 #include "fog_ground.hpp"
 #include "raster/pipeline_impl.hpp"
 #include "raster/shaders/cloud.hpp"
+#include "scene_light.hpp"
 #include "scene_list.hpp"
 
 namespace raster {
@@ -66,14 +72,22 @@ media::VoxelGrid cloudGrid(const SceneOptions& o) {
                 : media::loadRawVoxelGrid(o.volume, media::VoxelBox{glm::vec3(-1.0f), glm::vec3(1.0f)});
 }
 
-// cloud-point's light in the march's voxel units: the position mapped as the world is, the intensity
-// times voxelsPerMetre² (I_v/r_v² = I/r² with r_v = r·voxelsPerMetre); dim moonlight as ambient.
-media::VolumeLight pointLight(const glm::vec3& origin, float voxels_per_metre) {
+// cloud-point's light, world metres: the lamp under the cloud, dim moonlight as ambient.
+media::VolumeLight pointLight() {
     media::VolumeLight light = cloudLight();
     light.kind = media::LightKind::point;
-    light.position = (kPointLight - origin) * voxels_per_metre;
-    light.intensity = kPointIntensity * (voxels_per_metre * voxels_per_metre);
+    light.position = kPointLight;
+    light.intensity = kPointIntensity;
     light.ambient = kMoonlight;
+    return light;
+}
+
+// A light in the march's voxel units: a point light's position mapped as the world is, its intensity
+// times voxelsPerMetre² (I_v/r_v² = I/r² with r_v = r·voxelsPerMetre); a direction stays as it is.
+media::VolumeLight inVoxels(media::VolumeLight light, const glm::vec3& origin, float voxels_per_metre) {
+    if (light.kind != media::LightKind::point) return light;
+    light.position = (light.position - origin) * voxels_per_metre;
+    light.intensity = light.intensity * (voxels_per_metre * voxels_per_metre);
     return light;
 }
 
@@ -101,19 +115,28 @@ public:
         ps_.voxelsPerMetre = voxels_per_metre;
         ps_.origin = kCloudCentre - 0.5f * glm::vec3(dims) / voxels_per_metre;
         ps_.volume = &volume_;
-        ps_.light = cloudLight();
+        const media::VolumeLight light = optionsLight(point_ ? pointLight() : cloudLight(), o, kCloudCentre);
+        ps_.light = inVoxels(light, ps_.origin, voxels_per_metre);
         ps_.fog.height = o.heightFog;
         if (o.fogSigma) ps_.fog.sigma = *o.fogSigma;
         if (o.fogSource) ps_.fog.q = *o.fogSource;
         if (o.fogFalloff) ps_.fog.b = -*o.fogFalloff;
-        RASTER_CHECK(ground_.psFog.light == ps_.light.toLight);  // the ground's sun is the cloud's
+        RASTER_CHECK(ground_.psFog.light == cloudLight().toLight);  // the ground's sun is the cloud's
         ground_ps_.ground = ground_.psFog;
+        if (light.kind == media::LightKind::point) {
+            const media::VolumeLight sun = cloudLight();
+            const auto mean = [](const glm::vec3& v) { return (v.x + v.y + v.z) / 3.0f; };
+            ground_ps_.pointLight = true;
+            ground_ps_.lightPosition = light.position;
+            ground_ps_.relativeIntensity = mean(light.intensity) / mean(sun.sun);
+        } else {
+            ground_ps_.ground.light = light.toLight;
+        }
         ground_ps_.origin = ps_.origin;
         ground_ps_.voxelsPerMetre = voxels_per_metre;
         ground_ps_.volume = &volume_;
         ground_ps_.settings = ps_.settings;
         if (point_) {
-            ps_.light = pointLight(ps_.origin, voxels_per_metre);
             ps_.fog.sigma = glm::vec3(0.0f), ps_.fog.q = glm::vec3(0.0f);  // rgb = L: no fog in front
         }
     }

@@ -80,7 +80,7 @@ struct PsFigure {
     glm::vec3 eye{0.0f};
     const media::MetaballVolume* volume = nullptr;
     media::FigureMedium medium;
-    media::FigureLight light;
+    media::VolumeLight light;  // its g and albedo unused: the medium's
     media::FigureMarch march;
     Backdrop backdrop;
     bool falseColour = false;  // outOfRangeColour, else clamped to [0, 1]

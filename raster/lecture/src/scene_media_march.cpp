@@ -9,6 +9,7 @@
 
 #include "raster/pipeline_impl.hpp"
 #include "raster/shaders/media.hpp"
+#include "scene_light.hpp"
 #include "scene_list.hpp"
 
 namespace raster {
@@ -27,7 +28,8 @@ public:
         ps_.invViewProj = glm::inverse(sceneProjection(o) * sceneView(camera));
         ps_.eye = camera.eye;
         ps_.volume = &volume_;
-        ps_.light = mediaSceneLight();
+        const media::Box& box = volume_.box;
+        ps_.light = optionsLight(mediaSceneLight(), o, 0.5f * (box.lo + box.hi));
         ps_.background = kMediaBackground;
     }
     std::string_view name() const override { return "media"; }

@@ -31,14 +31,40 @@ std::string secondsText(double seconds) {
 
 }  // namespace
 
-std::string fogValueProblem(double value) {
+std::string finiteValueProblem(double value) {
     char text[64];
     std::snprintf(text, sizeof text, "%g", value);
     if (std::isnan(value)) return std::string(text) + " is not a number";
     if (std::isinf(value)) return std::string(text) + " is infinite";
-    if (value < 0.0) return std::string(text) + " is negative";
     if (!std::isfinite(float(value))) return std::string(text) + " is too large for a float";
     return "";
+}
+
+std::string fogValueProblem(double value) {
+    if (std::isfinite(value) && value < 0.0) {
+        char text[64];
+        std::snprintf(text, sizeof text, "%g is negative", value);
+        return text;
+    }
+    return finiteValueProblem(value);
+}
+
+std::string sceneLightProblem(const SceneLight& light) {
+    for (int c = 0; c < 3; ++c)
+        if (std::string problem = finiteValueProblem(light.value[c]); !problem.empty()) return problem;
+    const glm::vec3 n = glm::normalize(light.value);
+    if (!light.point && !(std::isfinite(n.x) && std::isfinite(n.y) && std::isfinite(n.z))) {
+        char text[160];
+        std::snprintf(text, sizeof text, "the direction (%g, %g, %g) has no length", double(light.value.x),
+                      double(light.value.y), double(light.value.z));
+        return text;
+    }
+    return "";
+}
+
+const std::vector<std::string_view>& volumeLightScenes() {
+    static const std::vector<std::string_view> names = {"media", "cloud", "cloud-point"};
+    return names;
 }
 
 void Scene::advance(double seconds) {
@@ -139,6 +165,29 @@ void requireFogMedium(const SceneOptions& o) {
             std::snprintf(text, sizeof text, "fog source %g over sigma %g (channel %c) is not a finite float",
                           double(q), double(sigma), "RGB"[c]);
             RASTER_REQUIRE(sigma == 0.0f || std::isfinite(q / sigma), InvalidArgument, text);
+        }
+}
+
+// The options' light: for a scene that marches one, its numbers finite, a direction not 0, the
+// intensity's components finite and ≥ 0.
+void requireLight(std::string_view name, const SceneOptions& o) {
+    if (!o.light && !o.lightIntensity) return;
+    const auto& takes = volumeLightScenes();
+    if (std::find(takes.begin(), takes.end(), name) == takes.end()) {
+        std::string list;
+        for (std::string_view n : takes) list += (list.empty() ? "" : ", ") + std::string(n);
+        throw Error(ErrorCode::InvalidArgument,
+                    "light: scene '" + std::string(name) + "' has no volume light (the scenes with one: " + list + ")");
+    }
+    if (o.light) {
+        const std::string problem = sceneLightProblem(*o.light);
+        RASTER_REQUIRE(problem.empty(), InvalidArgument, "light: " + problem);
+    }
+    if (o.lightIntensity)
+        for (int c = 0; c < 3; ++c) {
+            const std::string problem = fogValueProblem((*o.lightIntensity)[c]);
+            RASTER_REQUIRE(problem.empty(), InvalidArgument,
+                           std::string("light intensity ") + "RGB"[c] + ": " + problem);
         }
 }
 
@@ -265,6 +314,7 @@ std::unique_ptr<Scene> makeScene(std::string_view name, const SceneOptions& opti
                        "particle count " + std::to_string(*options.count) + " is above 50000000");
     }
     requireFogMedium(options);
+    requireLight(name, options);
     if (const BuiltinScene* builtin = findBuiltinScene(name)) {
         std::unique_ptr<Scene> scene = builtin->make(name, options);
         RASTER_CHECK(scene && scene->name() == name);

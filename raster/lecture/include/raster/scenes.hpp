@@ -32,6 +32,13 @@ struct SceneCamera {
     glm::vec3 eye, target;
 };
 
+// A volume light of the options (SceneOptions::light): a point light at `value` (world metres), or a
+// directional one whose light arrives from `value`'s direction (towards the light, any length > 0).
+struct SceneLight {
+    bool point = false;
+    glm::vec3 value{0.0f, 1.0f, 0.0f};
+};
+
 struct SceneOptions {
     uint32_t width = 1280, height = 720;
     // particles: the number of billboards; fire: the particle system's slots (maxParticles; the
@@ -69,7 +76,27 @@ struct SceneOptions {
     // per unit metaball density.
     std::optional<glm::vec3> fogSigma, fogSource;
     std::optional<float> fogFalloff;
+    // The scenes that march a volume light (volumeLightScenes(): media, cloud, cloud-point): a light
+    // in place of the scene's own (a point light or a directional one, SceneLight), and its strength,
+    // RGB: a point light's radiant intensity I (per steradian: irradiance I/r² at r metres), a
+    // directional one's irradiance E. Unset strength: a light of the scene's own light's kind keeps
+    // its strength; one of the other kind gives the medium's centre the irradiance the scene's own
+    // gives it. Numbers finite, the intensity ≥ 0, a direction not 0; another scene refuses them
+    // (makeScene's Error names each).
+    std::optional<SceneLight> light;
+    std::optional<glm::vec3> lightIntensity;
 };
+
+// What is wrong with one number of a light's position or direction, "" when nothing: a finite float.
+// "nan is not a number", "inf is infinite", "1e+39 is too large for a float".
+std::string finiteValueProblem(double value);
+
+// What is wrong with a light (SceneOptions::light), "" when nothing: a number as finiteValueProblem
+// says, or "the direction (0, 0, 0) has no length" (a directional light's, normalised to NaN).
+std::string sceneLightProblem(const SceneLight& light);
+
+// The scenes that take SceneOptions::light and lightIntensity.
+const std::vector<std::string_view>& volumeLightScenes();
 
 // What is wrong with one component of a fog parameter (σ, q or the falloff B), "" when nothing: each is
 // a finite float ≥ 0. "nan is not a number", "inf is infinite", "1e+39 is too large for a float",

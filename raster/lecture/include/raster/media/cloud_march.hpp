@@ -210,15 +210,16 @@ inline ScatteredLight pointLightSample(const VolumeLight& light, const glm::vec3
 
 // The transmittance e^{−τ} from a point x anywhere (inside the box or outside it: a surface under the
 // cloud) towards the light along l (unit length), through the cloud: the shadow ray clipped to the
-// box, marched as the view ray's shadow rays are (majorant skipping, shadow termination). Exactly 1
-// where the ray misses the box: nothing evaluated.
+// box and to `distance` (a point light's; ∞ for a directional light), marched as the view ray's
+// shadow rays are (majorant skipping, shadow termination). Exactly 1 where the ray misses the box:
+// nothing evaluated.
 inline float cloudShadowTransmittance(const CloudVolume& v, const CloudMarchSettings& s, const glm::vec3& x,
-                                      const glm::vec3& l) {
+                                      const glm::vec3& l, float distance = INFINITY) {
     const auto [t_near, t_far] = slabInterval(v.box, x, l);
-    const float t0 = std::max(t_near, 0.0f);
-    if (!(t_far > t0)) return 1.0f;
+    const float t0 = std::max(t_near, 0.0f), t1 = std::min(t_far, distance);
+    if (!(t1 > t0)) return 1.0f;
     MarchResult unused;
-    return raster::exp(-detail::cloudOpticalDepth(v, s, x, l, t0, t_far, unused));
+    return raster::exp(-detail::cloudOpticalDepth(v, s, x, l, t0, t1, unused));
 }
 
 // The radiance and transmittance of one view ray over its stretch [s0, s1] inside the box (voxel units,

@@ -8,8 +8,10 @@
 // scale 1, so that its extinction() is ρ) times coefficients per unit density, RGB:
 //   μ = (σa + σs)·ρ                                        extinction, 1/m
 //   q = ε·ρ + σs·ρ·(p(cos θ)·e^{−(σa+σs)·τ_l}·E + A)       source, radiance per metre
-// where τ_l = ∫ρ dl along the shadow ray to the box's exit towards a directional light (E its
-// irradiance, A an isotropic ambient radiance), cos θ = d·l (phase_functions.hpp's convention: the
+// where τ_l = ∫ρ dl along the shadow ray to the box's exit towards the light (VolumeLight,
+// volume_light.hpp: a directional light, E its irradiance; or a point light, E = I/r² and the shadow
+// ray ending at the light where that comes first; A an isotropic ambient radiance; the light's g and
+// albedo are the medium's here, unused), cos θ = d·l (phase_functions.hpp's convention: the
 // light travels along −l and leaves along −d) and p the chosen phase function. σa alone: a medium that
 // only absorbs (q = 0); ε alone: one that only emits (μ = 0, L = L_bg + ∫q ds).
 //
@@ -58,12 +60,6 @@ struct FigureMedium {
     float g = 0.0f;  // Henyey–Greenstein's anisotropy (mean cosine)
 };
 
-struct FigureLight {
-    glm::vec3 toLight{0.0f, 1.0f, 0.0f};  // unit vector towards the directional light
-    glm::vec3 sun{0.0f};                  // E, its irradiance
-    glm::vec3 ambient{0.0f};              // A, in-scattered radiance from all directions
-};
-
 struct FigureMarch {
     StepRule rule = StepRule::exponential;
     uint32_t steps = 32;       // N along the view ray (≥ 1)
@@ -72,7 +68,7 @@ struct FigureMarch {
 
 // The radiance reaching the eye along o + t·d with L_bg behind the medium (header). `volume` built
 // with extinction scale 1.
-inline glm::vec3 marchFigure(const MetaballVolume& volume, const FigureMedium& medium, const FigureLight& light,
+inline glm::vec3 marchFigure(const MetaballVolume& volume, const FigureMedium& medium, const VolumeLight& light,
                              const FigureMarch& march, const glm::vec3& eye, const glm::vec3& d,
                              const glm::vec3& background) {
     const auto [t_near, t_far] = slabInterval(volume.box, eye, d);
@@ -83,9 +79,9 @@ inline glm::vec3 marchFigure(const MetaballVolume& volume, const FigureMedium& m
     const auto [first, last] = detail::ballSpan(volume, eye, d, t0 + (offset - 0.5f) * ds, ds, march.steps);
     const glm::vec3 extinction = medium.absorption + medium.scattering;
     const bool scatters = medium.scattering != glm::vec3(0.0f);
-    const float phase = phaseValue(medium.phase, medium.g, glm::dot(d, light.toLight));
-    VolumeLight shadow_light;  // detail::shadowDepth reads its direction alone
-    shadow_light.toLight = light.toLight;
+    const bool point = light.kind == LightKind::point;
+    const float phase = phaseValue(medium.phase, medium.g, glm::dot(d, light.toLight));  // directional
+    const glm::vec3 inv_light = 1.0f / light.toLight;
     MarchSettings shadow_settings;
     shadow_settings.shadowSteps = march.shadowSteps;
     MarchResult counts;
@@ -96,8 +92,12 @@ inline glm::vec3 marchFigure(const MetaballVolume& volume, const FigureMedium& m
         if (rho == 0.0f) continue;  // μ = q = 0: every rule leaves L as it is
         glm::vec3 q = medium.emission * rho;
         if (scatters) {
-            const float tau = detail::shadowDepth(volume, shadow_light, 1.0f / light.toLight, shadow_settings, x, counts);
-            const glm::vec3 in_scattered = phase * glm::exp(-extinction * tau) * light.sun + light.ambient;
+            const LightAtPoint at = lightAt(light, x);
+            const float length = point ? detail::shadowLength<LightKind::point>(volume.box, x, at, inv_light)
+                                       : detail::shadowLength<LightKind::directional>(volume.box, x, at, inv_light);
+            const float tau = detail::shadowDepth(volume, shadow_settings, x, at.toLight, length, counts);
+            const float p = point ? phaseValue(medium.phase, medium.g, glm::dot(d, at.toLight)) : phase;
+            const glm::vec3 in_scattered = p * glm::exp(-extinction * tau) * at.irradiance + light.ambient;
             q += medium.scattering * rho * in_scattered;
         }
         const glm::vec3 mu = extinction * rho;

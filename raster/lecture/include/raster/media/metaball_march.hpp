@@ -1,11 +1,16 @@
 // The `media` scene's march (../shared/bench/SCENES.md, "Scene media"; NOTES.md part 1,
-// "Sugármenetelés"): single scattering of a directional light in a metaball medium, with shadow rays,
-// an isotropic ambient term and the exponential step, front to back from the eye.
+// "Sugármenetelés"): single scattering of a directional or a point light (VolumeLight,
+// volume_light.hpp) in a metaball medium, with shadow rays, an isotropic ambient term and the
+// exponential step, front to back from the eye. The loop over the samples is scatter_march.hpp's,
+// the one the ray-marching lab steps too; this file fills its places (MetaballPlaces) and integrates
+// from the eye (FromTheEye).
 //
 // Per view ray o + t·d (d unit length, t in metres): the box's entry and exit t0 = max(t_near, 0),
 // t1 = t_far; N steps of Δs = (t1 − t0)/N sampled at their midpoints x_i. At a sample with μ_i > 0:
 //   shadow ray   τ_l = Σ_j μ(x_i + l·(j + ½)·Δl)·Δl, M steps of Δl = t_l/M to the box's exit along l
-//   source       S_i = albedo·(p(cos θ)·e^{−τ_l}·E + A)        (radiance; p per steradian, cos θ = d·l)
+//                (a point light's: l = (P − x_i)/r, t_l = min(exit, r): it ends at the light)
+//   source       S_i = albedo·(p(cos θ)·e^{−τ_l}·E + A)        (radiance; p per steradian, cos θ = d·l;
+//                a point light's E = I/r² and cos θ per sample)
 //   step         L += T·S_i·(1 − e^{−μ_iΔs}),  T *= e^{−μ_iΔs} (exact for μ, S constant over the step),
 //                one expm1 giving both (simd.hpp's exp and expm1: 1 and 2 ulp, the C library's in the
 //                reference pipeline)
@@ -37,6 +42,8 @@
 #include "raster/media/majorant_grid.hpp"
 #include "raster/media/metaballs.hpp"
 #include "raster/media/phase_functions.hpp"
+#include "raster/media/scatter_march.hpp"
+#include "raster/media/volume_light.hpp"
 #include "raster/pixel_march.hpp"
 #include "raster/simd.hpp"
 
@@ -105,45 +112,6 @@ inline MetaballVolume makeMetaballVolume(const std::array<Metaball, 6>& balls, c
     return v;
 }
 
-// The light: one directional or point light, plus isotropic ambient in-scattering.
-//
-// Directional: the irradiance E = sun arrives along −toLight everywhere; a shadow ray from x runs
-// along toLight to the medium's exit. Point: from `position`, radiant intensity I = intensity (per
-// steradian, RGB), so the irradiance at x (facing the light, in a vacuum) is I/r², r = |position − x|
-// (inverse-square falloff); a shadow ray from x runs along (position − x)/r and ends at the light
-// (at r, or at the medium's exit if that comes first). Either way the phase function's angle is
-// cos θ = d·l for a view ray d (from the eye) and l the unit vector from the sample towards the light:
-// the light travels along −l and leaves towards the eye along −d, and phase_functions.hpp's cos θ is
-// dot(travel, scattered) = (−l)·(−d), so g > 0 makes a light behind the medium (l ≈ d) shine through.
-enum class LightKind : uint8_t { directional, point };
-
-struct VolumeLight {
-    glm::vec3 toLight{0.0f, 1.0f, 0.0f};  // directional: unit vector towards the light
-    glm::vec3 sun{1.0f};                  // directional: irradiance E
-    glm::vec3 ambient{0.0f};              // A: in-scattered radiance from all directions
-    float g = 0.0f;                       // Henyey–Greenstein asymmetry (phase_functions.hpp)
-    float albedo = 1.0f;                  // single-scattering albedo μs/μ
-    LightKind kind = LightKind::directional;
-    glm::vec3 position{0.0f};             // point: where the light is (the march's units)
-    glm::vec3 intensity{0.0f};            // point: radiant intensity I, irradiance I/r² at distance r
-};
-
-// What a point x receives from the light: the unit direction towards it, how far the shadow ray may
-// run (∞ for a directional light; r for a point light) and the irradiance before any medium on the
-// way (E, or I/r²: +∞ at the light's own position, r = 0, where the direction is NaN).
-struct LightAtPoint {
-    glm::vec3 toLight;
-    float distance;
-    glm::vec3 irradiance;
-};
-
-inline LightAtPoint lightAt(const VolumeLight& light, const glm::vec3& x) {
-    if (light.kind == LightKind::directional) return {light.toLight, INFINITY, light.sun};
-    const glm::vec3 v = light.position - x;
-    const float r2 = glm::dot(v, v), r = std::sqrt(r2);
-    return {v / r, r, light.intensity / r2};
-}
-
 // The light and phase of SCENES.md's `media` (its scene and `raster bench error` march with it).
 inline VolumeLight mediaSceneLight() {
     VolumeLight light;
@@ -208,13 +176,6 @@ inline std::pair<int32_t, int32_t> ballSpan(const MetaballVolume& v, const glm::
     return {first, last};
 }
 
-// The eight sample positions o + d·(t0 + (i + ½)·dt), i = i0 .. i0 + 7: per lane the scalar's operations.
-inline std::array<Float8, 3> samplePositions8(const glm::vec3& o, const glm::vec3& d, float t0, float dt, uint32_t i0) {
-    const Float8 half_index(simd::F32x8{0.5f, 1.5f, 2.5f, 3.5f, 4.5f, 5.5f, 6.5f, 7.5f});
-    const Float8 s = Float8(t0) + (half_index + Float8(float(i0))) * Float8(dt);
-    return {Float8(o.x) + Float8(d.x) * s, Float8(o.y) + Float8(d.y) * s, Float8(o.z) + Float8(d.z) * s};
-}
-
 // slabInterval(box, x, d).second for x inside the box, given inv = 1/d per axis (computed once per
 // light: the same reciprocals slabInterval computes per call, so the same bits).
 inline float exitDistance(const Box& box, const glm::vec3& x, const glm::vec3& d, const glm::vec3& inv) {
@@ -242,17 +203,18 @@ inline uint32_t shadowBallMask(const MetaballVolume& v, const glm::vec3& x, cons
     return near.bits();
 }
 
-// τ_l along the shadow ray from x to the box's exit towards the light: Σ_j μ(p_j)·Δl in j's order, as
-// the definition sums it, eight samples' densities at a time over the balls the ray may meet (the
-// others add +0 at every sample: the same bits).
-inline float shadowDepth(const MetaballVolume& v, const VolumeLight& light, const glm::vec3& inv_light,
-                         const MarchSettings& settings, const glm::vec3& x, MarchResult& result) {
-    const float dl = exitDistance(v.box, x, light.toLight, inv_light) / float(settings.shadowSteps);
-    const uint32_t balls = shadowBallMask(v, x, light.toLight);
+// τ_l along the shadow ray x + t·l, t in [0, length] (l unit length; length: to the box's exit towards
+// the light, or to a point light where that is nearer): Σ_j μ(p_j)·Δl in j's order, as the definition
+// sums it, eight samples' densities at a time over the balls the ray may meet (the others add +0 at
+// every sample: the same bits).
+inline float shadowDepth(const MetaballVolume& v, const MarchSettings& settings, const glm::vec3& x,
+                         const glm::vec3& l, float length, MarchResult& result) {
+    const float dl = length / float(settings.shadowSteps);
+    const uint32_t balls = shadowBallMask(v, x, l);
     float tau = 0.0f;
     if (balls == 0) return tau;  // no ball on the way: every sample's μ is 0
     for (uint32_t j0 = 0; j0 < settings.shadowSteps; j0 += 8) {
-        const auto [px, py, pz] = samplePositions8(x, light.toLight, 0.0f, dl, j0);
+        const auto [px, py, pz] = samplePositions8(x, l, 0.0f, dl, j0);
         const Float8 mu = v.extinction8(px, py, pz, balls);
         const uint32_t lanes = std::min(8u, settings.shadowSteps - j0);
         result.densityEvaluations += lanes;
@@ -274,63 +236,115 @@ inline Float8 expm18(Float8 x) {
     return x;
 }
 
+// The shadow ray's length from x along at.toLight: to the box's exit, or to a point light nearer than it
+// (inv_light: 1/toLight of a directional light, for which at.distance is ∞).
+template <LightKind Kind>
+float shadowLength(const Box& box, const glm::vec3& x, const LightAtPoint& at, const glm::vec3& inv_light) {
+    if constexpr (Kind == LightKind::directional) return exitDistance(box, x, at.toLight, inv_light);
+    else return std::min(exitDistance(box, x, at.toLight, 1.0f / at.toLight), at.distance);
+}
+
+// The metaball medium's places in the march (scatter_march.hpp): its eight-wide densities, the span of
+// samples its balls may reach (SkipMethod::balls), Henyey–Greenstein and its shadow rays.
+template <LightKind Kind>
+struct MetaballPlaces {
+    const MetaballVolume& v;
+    const MarchSettings& settings;
+    MarchResult& result;  // counts the shadow rays' density evaluations
+    float g;
+    glm::vec3 inv_light;  // 1/toLight (directional)
+
+    Float8 extinction8(Float8 x, Float8 y, Float8 z) const { return v.extinction8(x, y, z); }
+    float phase(float cos_theta) const { return henyeyGreenstein(g, cos_theta); }
+    std::pair<int32_t, int32_t> span(const glm::vec3& o, const glm::vec3& d, float t0, float dt, uint32_t n) const {
+        if (settings.skip == SkipMethod::balls) return ballSpan(v, o, d, t0, dt, n);
+        return {0, int32_t(n) - 1};
+    }
+    float shadowDepthAt(const glm::vec3& x, const LightAtPoint& at) const {
+        return shadowDepth(v, settings, x, at.toLight, shadowLength<Kind>(v.box, x, at, inv_light), result);
+    }
+    Float8 shadowTransmittance8(const std::array<Float8, 3>& x, uint32_t lanes, const LightAtPoint* at) const {
+        Float8 tau(0.0f);
+        for (; lanes != 0; lanes &= lanes - 1) {
+            const int l = __builtin_ctz(lanes);
+            tau.set(l, shadowDepthAt({x[0][l], x[1][l], x[2][l]}, at[l]));
+        }
+        return exp8(-tau);
+    }
+};
+
+// The exponential step summed from the eye (header): L += T·albedo·in·(1 − e^{−μΔs}), T *= e^{−μΔs},
+// e^{−μΔs} − 1 prepared eight at a time; each evaluated sample handed to the observer.
+template <class Observer>
+struct FromTheEye {
+    MarchResult& result;
+    Observer& observe;
+    float albedo;
+    float ds = 0.0f;
+
+    Float8 prepare(Float8 mu, float step_length) {
+        ds = step_length;
+        return expm18(-(mu * Float8(ds)));
+    }
+    void pass(uint32_t i, float s, float mu) {
+        observe(MarchSample{i, s, mu, mu * ds, result.transmittance, 1.0f, glm::vec3(0.0f)});
+    }
+    // e = e^{−μΔs} − 1: −e is absorbed, 1 + e passes.
+    void scatter(uint32_t i, float s, float mu, float e, float shadow_t, const glm::vec3& in) {
+        MarchSample sample{i, s, mu, mu * ds, result.transmittance, shadow_t, glm::vec3(0.0f)};
+        const glm::vec3 source = albedo * in;
+        sample.added = result.transmittance * source * -e;
+        result.radiance += sample.added;
+        result.transmittance *= 1.0f + e;
+        observe(sample);
+    }
+};
+
+// marchMetaballs for a light of kind Kind (header).
+template <LightKind Kind, class Observer>
+MarchResult marchMetaballsLit(const MetaballVolume& v, const VolumeLight& light, const MarchSettings& settings,
+                              const glm::vec3& eye, const glm::vec3& d, float t0, float t1, Observer& observe) {
+    MarchResult result;
+    if (!(t1 > t0)) return result;
+    const MetaballPlaces<Kind> places{v, settings, result, light.g, 1.0f / light.toLight};
+    FromTheEye<Observer> integrator{result, observe, light.albedo};
+    if (settings.skip != SkipMethod::grid) {
+        result.densityEvaluations +=
+            marchScattering<MarchOrder::frontToBack, Kind>(places, light, eye, d, t0, t1, settings.steps, integrator);
+        return result;
+    }
+    // The grid's samples one by one, each with its cell's balls: the same per-sample rule.
+    const float ds = (t1 - t0) / float(settings.steps);
+    integrator.ds = ds;
+    SampleLight<Kind, MetaballPlaces<Kind>> lit{places, light, d};
+    forEachOccupiedSample(v.majorant, eye, d, t0, ds, settings.steps, [&](uint32_t i, const glm::ivec3& cell) {
+        ++result.densityEvaluations;
+        const float s = t0 + (float(i) + 0.5f) * ds;
+        const glm::vec3 x = eye + d * s;
+        const float mu = v.extinction(x, v.ballMask[v.majorant.frame.index(cell)]);
+        if (!(mu > 0.0f)) {
+            integrator.pass(i, s, mu);
+            return true;
+        }
+        const LightAtPoint at = lit.at(x);
+        const float shadow_t = raster::exp(-places.shadowDepthAt(x, at));
+        integrator.scatter(i, s, mu, raster::expm1(-(mu * ds)), shadow_t, lit.inScattered(at, shadow_t));
+        return true;
+    });
+    return result;
+}
+
 }  // namespace detail
 
 // The radiance and transmittance of one view ray over its stretch [t0, t1] inside the box (header:
-// the rule and its skipping). A directional light (its toLight and sun; the point light is the
-// cloud march's, cloud_march.hpp). The caller clips: t0 = max(t_near, 0), t1 = t_far of slabInterval.
+// the rule and its skipping), for a directional or a point light. The caller clips: t0 = max(t_near, 0),
+// t1 = t_far of slabInterval.
 template <class Observer = NoMarchObserver>
 MarchResult marchMetaballs(const MetaballVolume& v, const VolumeLight& light, const MarchSettings& settings,
                            const glm::vec3& eye, const glm::vec3& d, float t0, float t1, Observer&& observe = {}) {
-    MarchResult result;
-    if (!(t1 > t0)) return result;
-    float phase = -1.0f;  // computed at the first sample that scatters (most rays have none)
-    const glm::vec3 inv_light = 1.0f / light.toLight;
-    const float ds = (t1 - t0) / float(settings.steps);
-    // One sample's step, given μ, the shadow ray's transmittance e^{−τ_l} and e = e^{−μΔs} − 1 (−e is
-    // absorbed, 1 + e passes): the exponentials come in eight at a time.
-    auto step = [&](uint32_t i, float mu, float shadow_t, float e) {
-        const float s = t0 + (float(i) + 0.5f) * ds;
-        MarchSample sample{i, s, mu, mu * ds, result.transmittance, 1.0f, glm::vec3(0.0f)};
-        if (mu > 0.0f) {
-            if (phase < 0.0f) phase = henyeyGreenstein(light.g, glm::dot(d, light.toLight));
-            sample.shadowTransmittance = shadow_t;
-            const glm::vec3 source = light.albedo * (phase * shadow_t * light.sun + light.ambient);
-            sample.added = result.transmittance * source * -e;
-            result.radiance += sample.added;
-            result.transmittance *= 1.0f + e;
-        }
-        observe(sample);
-    };
-    auto shadowDepthAt = [&](uint32_t i) {
-        return detail::shadowDepth(v, light, inv_light, settings, eye + d * (t0 + (float(i) + 0.5f) * ds), result);
-    };
-    if (settings.skip == SkipMethod::grid) {
-        forEachOccupiedSample(v.majorant, eye, d, t0, ds, settings.steps, [&](uint32_t i, const glm::ivec3& cell) {
-            ++result.densityEvaluations;
-            const float mu =
-                v.extinction(eye + d * (t0 + (float(i) + 0.5f) * ds), v.ballMask[v.majorant.frame.index(cell)]);
-            const float tau = mu > 0.0f ? shadowDepthAt(i) : 0.0f;
-            step(i, mu, raster::exp(-tau), raster::expm1(-(mu * ds)));
-            return true;
-        });
-        return result;
-    }
-    const auto [first, last] = settings.skip == SkipMethod::balls
-                                   ? detail::ballSpan(v, eye, d, t0, ds, settings.steps)
-                                   : std::pair<int32_t, int32_t>{0, int32_t(settings.steps) - 1};
-    for (int32_t i0 = first; i0 <= last; i0 += 8) {
-        const auto [px, py, pz] = detail::samplePositions8(eye, d, t0, ds, uint32_t(i0));
-        const Float8 mu = v.extinction8(px, py, pz);
-        const int32_t lanes = std::min(8, last - i0 + 1);
-        result.densityEvaluations += uint32_t(lanes);
-        Float8 tau(0.0f);
-        for (int32_t l = 0; l < lanes; ++l)
-            if (mu[l] > 0.0f) tau.set(l, shadowDepthAt(uint32_t(i0 + l)));
-        const Float8 shadow_t = detail::exp8(-tau), e = detail::expm18(-(mu * Float8(ds)));
-        for (int32_t l = 0; l < lanes; ++l) step(uint32_t(i0 + l), mu[l], shadow_t[l], e[l]);
-    }
-    return result;
+    if (light.kind == LightKind::point)
+        return detail::marchMetaballsLit<LightKind::point>(v, light, settings, eye, d, t0, t1, observe);
+    return detail::marchMetaballsLit<LightKind::directional>(v, light, settings, eye, d, t0, t1, observe);
 }
 
 // The same from the eye: the ray clipped to the box first.

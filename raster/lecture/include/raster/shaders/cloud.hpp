@@ -14,7 +14,8 @@
 // unchanged.
 //
 // The ground under the cloud (PsCloudGround): the fog scene's ground shader with its sun attenuated by
-// the cloud's transmittance along the shadow ray from the surface point towards the sun.
+// the cloud's transmittance along the shadow ray from the surface point towards the sun, or lit by a
+// point light in the sun's place.
 #pragma once
 
 #include <algorithm>
@@ -85,6 +86,11 @@ struct PsCloudMarch {
 // misses the cloud's box, or the surface faces away from the sun, nothing is marched and the term is
 // multiplied by exactly 1: the fog ground's bits. The fog over the ground is the fog scene's: the
 // sunlight reaching the ground is not attenuated by the fog (as PsFog has it).
+//
+// With a point light in the sun's place (pointLight): the sunlit term is max(0, n·l)·e^{−τ}·(I/r²)/E,
+// l = (P − x)/r towards the light at P, r metres away, the shadow ray ending at the light, and I/E
+// (relativeIntensity, m²) the light's intensity over the sun's irradiance (each the mean of its RGB),
+// the sun's E being the 1 of the ground's sunlit term.
 struct PsCloudGround {
     using SpecialisedStates = PsFog::SpecialisedStates;  // drawn as the fog scene's ground is
     using Input = LitVertex;
@@ -93,14 +99,30 @@ struct PsCloudGround {
     float voxelsPerMetre = 1.0f;
     const media::CloudVolume* volume = nullptr;
     media::CloudMarchSettings settings;
+    bool pointLight = false;
+    glm::vec3 lightPosition{0.0f};   // world, metres
+    float relativeIntensity = 0.0f;  // I/E, m²
 
     // The sun's visibility at a world point: 1 where the shadow ray misses the cloud's box.
     float sunVisibility(const glm::vec3& world) const {
         return media::cloudShadowTransmittance(*volume, settings, (world - origin) * voxelsPerMetre, ground.light);
     }
 
+    // The point light's sunlit term at a world point with unit normal n (header).
+    float pointLit(const glm::vec3& world, const glm::vec3& n) const {
+        const glm::vec3 v = lightPosition - world;
+        const float r2 = glm::dot(v, v), r = std::sqrt(r2);
+        const glm::vec3 l = v / r;
+        const float lambert = glm::dot(n, l);
+        if (!(lambert > 0.0f)) return 0.0f;
+        const float t = media::cloudShadowTransmittance(*volume, settings, (world - origin) * voxelsPerMetre, l,
+                                                        r * voxelsPerMetre);
+        return lambert * t * relativeIntensity / r2;
+    }
+
     template <class T>
     glm::vec<4, T> operator()(const LitVertexT<T>& in) const {
+        if (pointLight) return pointLitShade(in);
         const T lambert = ground.lambert(in);
         if constexpr (std::is_same_v<T, float>) {
             return ground.shade(in, lambert > 0.0f ? lambert * sunVisibility(in.worldPos) : lambert);
@@ -110,6 +132,21 @@ struct PsCloudGround {
             in.worldPos.x.store(x), in.worldPos.y.store(y), in.worldPos.z.store(z), lambert.store(lit);
             for (int l = 0; l < kLanes; ++l)
                 if (lit[l] > 0.0f) lit[l] *= sunVisibility({x[l], y[l], z[l]});
+            return ground.shade(in, T::load(lit));
+        }
+    }
+
+    template <class T>
+    glm::vec<4, T> pointLitShade(const LitVertexT<T>& in) const {
+        const glm::vec<3, T> n = normalize(in.normal);
+        if constexpr (std::is_same_v<T, float>) {
+            return ground.shade(in, pointLit(in.worldPos, n));
+        } else {
+            constexpr int kLanes = int(sizeof(T) / sizeof(float));
+            alignas(64) float x[kLanes], y[kLanes], z[kLanes], nx[kLanes], ny[kLanes], nz[kLanes], lit[kLanes];
+            in.worldPos.x.store(x), in.worldPos.y.store(y), in.worldPos.z.store(z);
+            n.x.store(nx), n.y.store(ny), n.z.store(nz);
+            for (int l = 0; l < kLanes; ++l) lit[l] = pointLit({x[l], y[l], z[l]}, {nx[l], ny[l], nz[l]});
             return ground.shade(in, T::load(lit));
         }
     }
