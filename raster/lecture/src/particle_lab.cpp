@@ -30,7 +30,9 @@ Fountain::Fountain(uint32_t count, uint32_t seed, Answers answers)
 void Fountain::step() {
     for (uint32_t i = 0; i < particles_.size(); ++i) {
         Particle& p = particles_[i];
-        const auto rebirth = [&](Particle& q) { answers_.emit(q, kFountain, birthRandom(seed_, i, ++births_[i])); };
+        const auto rebirth = [&](Particle& q) {
+            answers_.emit(q, kFountain, birthRandom(seed_, i, ++births_[i]));
+        };
         if (wait_[i] > 0.0f) {  // not yet born: count down, be born when the wait is over
             wait_[i] -= kStepF;
             if (wait_[i] <= 0.0f) answers_.emit(p, kFountain, birthRandom(seed_, i, 0));
@@ -76,7 +78,9 @@ struct SparkCorner {
 };
 
 struct VsSpark {
-    SparkVertex operator()(const SparkIn& in) const { return {glm::vec4(in.position, 1.0f), in.colour, in.size}; }
+    SparkVertex operator()(const SparkIn& in) const {
+        return {glm::vec4(in.position, 1.0f), in.colour, in.size};
+    }
 };
 
 // gsBillboard: the sprite opened in clip space, its half-size times the projection's scale.
@@ -190,7 +194,9 @@ ParticleSystemScene::ParticleSystemScene(const SceneOptions& o, Answers answers)
 
 ParticleSystemScene::~ParticleSystemScene() = default;
 
-double ParticleSystemScene::time() const { return state_->time; }
+double ParticleSystemScene::time() const {
+    return state_->time;
+}
 
 void ParticleSystemScene::advanceBy(double seconds) {
     State& s = *state_;

@@ -58,8 +58,8 @@ std::vector<TreeCornerIn> plantTrees(uint32_t seed, int trees) {
                              -10.0f + 13.0f * hash01(seed, attempt, 3));
         if (base.z > -2.5f && std::abs(base.x) < 6.5f) continue;
         const float height = 2.6f + 2.0f * hash01(seed, k++, 4);
-        for (const glm::vec2 c :
-             {glm::vec2(1, 1), glm::vec2(1, 0), glm::vec2(-1, 1), glm::vec2(1, 0), glm::vec2(-1, 0), glm::vec2(-1, 1)})
+        for (const glm::vec2 c : {glm::vec2(1, 1), glm::vec2(1, 0), glm::vec2(-1, 1), glm::vec2(1, 0),
+                                  glm::vec2(-1, 0), glm::vec2(-1, 1)})
             out.push_back({base, {0.3f * height, height}, c});
     }
     return out;
@@ -131,7 +131,8 @@ uint32_t spritesPerRow(const SceneOptions& options) {
     const uint32_t per_row = options.count.value_or(kDefaultPerRow);
     if (per_row > kMaxPerRow)
         throw Error(ErrorCode::InvalidArgument, "sprite-methods: count (sprites per row) must be at most " +
-                                                    std::to_string(kMaxPerRow) + ", not " + std::to_string(per_row));
+                                                    std::to_string(kMaxPerRow) + ", not " +
+                                                    std::to_string(per_row));
     return per_row;
 }
 

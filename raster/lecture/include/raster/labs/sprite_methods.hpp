@@ -95,7 +95,9 @@ inline glm::vec2 spriteTexCoord(glm::vec2 corner) {
 
 // (c)'s vertex shader: the centre, size and tint passed on to the geometry shader.
 struct VsSpritePoint {
-    SpritePoint operator()(const SpritePointIn& in) const { return {glm::vec4(in.centre, 1.0f), in.size, in.tint}; }
+    SpritePoint operator()(const SpritePointIn& in) const {
+        return {glm::vec4(in.centre, 1.0f), in.size, in.tint};
+    }
 };
 
 // The meadow: world position to clip space, its texture coordinate, no tint.
@@ -242,7 +244,8 @@ class SpriteMethodsScene final : public LabScene {
         context.setVertexBuffer(0, &buffer);
     }
     template <class VS>
-    void drawCorners(Context& context, const std::vector<SpritePointIn>& sprites, const VS& vs, const Ps& ps) {
+    void drawCorners(Context& context, const std::vector<SpritePointIn>& sprites, const VS& vs,
+                     const Ps& ps) {
         std::vector<SpriteCornerIn> corners;
         for (const SpritePointIn& s : sprites)
             for (const glm::vec2 c : kSpriteCorners) corners.push_back({s.centre, s.size, s.tint, c});
