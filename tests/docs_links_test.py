@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The documentation's links and the code's comments.
 
-Every relative link of README.md, docs/ and labs/ (Markdown links and images, outside code) points
+Every relative link of README.md, docs/, labs/ and slides/ (Markdown links and images, outside code) points
 at a file or folder that exists, and where it names a heading (`FILE.md#heading`, or `#heading` in
 the same file), at a heading that exists, spelt as GitHub spells anchors. No source file under
 CODE_ROOTS cites an issue by its number or a commit of this repository's history: comments cite the
@@ -18,8 +18,10 @@ import unittest
 
 ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 
-# Markdown files whose links are checked: the README, and every .md under these folders.
-DOC_ROOTS = ["docs", "labs"]
+# Markdown files whose links are checked: the README, and every .md under these folders (the decks'
+# npm packages under slides/node_modules are not ours).
+DOC_ROOTS = ["docs", "labs", "slides"]
+DOC_SKIP_DIRS = {"node_modules"}
 # Source trees whose text may name no issue and no commit; corpora and image data are skipped.
 CODE_ROOTS = ["raster", "tests", "labs", "solutions", ".ci"]
 CODE_FILES = ["CMakeLists.txt", "CMakePresets.json"]
@@ -27,7 +29,8 @@ CODE_SKIP_DIRS = {"corpus", "__pycache__"}
 CODE_EXTENSIONS = {".cpp", ".hpp", ".h", ".py", ".sh", ".cmake", ".txt", ".json", ".gp", ""}
 
 FENCE = re.compile(r"^(```|~~~).*?^\1[^\n]*$", re.MULTILINE | re.DOTALL)
-INLINE_CODE = re.compile(r"(`+)(?:(?!\1).)+?\1", re.DOTALL)
+# A code span: a run of backticks to the next run as long, within a paragraph (never across a blank line).
+INLINE_CODE = re.compile(r"(`+)(?:(?!\1)(?!\n[ \t]*\n).)+?\1", re.DOTALL)
 LINK = re.compile(r"!?\[(?:[^\[\]]|\[[^\]]*\])*\]\(\s*<?([^)\s>]+)>?(?:\s+\"[^\"]*\")?\s*\)")
 HEADING = re.compile(r"^ {0,3}(#{1,6})\s+(.*?)\s*#*\s*$", re.MULTILINE)
 ISSUE = re.compile(r"\bissues?\s*#?\d+\b", re.IGNORECASE)
@@ -37,7 +40,7 @@ HEX_WORD = re.compile(r"(?<![.\w])(?=[0-9a-f]*[a-f])(?=[0-9a-f]*[0-9])[0-9a-f]{7
 def strip_code(text):
     """The Markdown text with fenced blocks and inline code spans blanked out."""
     text = FENCE.sub(lambda m: "\n" * m.group(0).count("\n"), text)
-    return INLINE_CODE.sub(lambda m: " " * len(m.group(0)), text)
+    return INLINE_CODE.sub(lambda m: re.sub(r"[^\n]", " ", m.group(0)), text)
 
 
 def github_anchor(heading):
@@ -71,7 +74,8 @@ def strip_code_fences_only(text):
 def markdown_files():
     files = [os.path.join(ROOT, "README.md")]
     for folder in DOC_ROOTS:
-        for dirpath, _, names in os.walk(os.path.join(ROOT, folder)):
+        for dirpath, dirnames, names in os.walk(os.path.join(ROOT, folder)):
+            dirnames[:] = sorted(d for d in dirnames if d not in DOC_SKIP_DIRS)
             files += [os.path.join(dirpath, n) for n in sorted(names) if n.endswith(".md")]
     return files
 
@@ -149,9 +153,11 @@ class DocsLinks(unittest.TestCase):
             with open(page, "w", encoding="utf-8") as f:
                 f.write("# Title\n\n## A part\n\n[ok](page.md#a-part) [self](#title) [gone](missing.md)\n"
                         "[bad anchor](page.md#no-part) `[in code](nowhere.md)`\n\n```\n[fenced](x.md)\n```\n"
-                        "[web](https://example.org/x.md)\n")
+                        "[web](https://example.org/x.md)\n\nA lone ` backtick\nand [lost](lost.md)\n\n"
+                        "[after](after.md) `a span\nover two lines` [kept](kept.md)\n")
             found = [(line, target) for line, target, _ in broken_links(page)]
-        self.assertEqual(found, [(5, "missing.md"), (6, "page.md#no-part")])
+        self.assertEqual(found, [(5, "missing.md"), (6, "page.md#no-part"), (14, "lost.md"), (16, "after.md"),
+                                 (17, "kept.md")])
 
 
 class NoHistoryInCode(unittest.TestCase):

@@ -6,10 +6,11 @@ run as a student would.
     handout_test.py build <source-dir> <build-dir> <cmake> <work-dir>
 
 leaks: makes the handout (raster/tools/handout/handout.cmake with this build's raster) into
-<build-dir>/handout, then fails on any file of solutions/, slides/ or tests/ in it, on any hidden
+<build-dir>/handout, then fails on any relative link of its Markdown that does not resolve inside it
+(docs_links_test.py's reading), on any file of solutions/, slides/ or tests/ in it, on any hidden
 scene's name (solutions/<lab>/grading.json) or options, and on any line of a solution's answers (the
 lines between `BEGIN LAB n` and `STAND-IN`, labs/generate.py) in any of its files — but those of the
-library's own lecture code, listed below, which are reported.
+library's own lecture code, listed exactly below (LIBRARY_ANSWERS), which are reported.
 
 build: unpacks raster-course.tar.gz into <work-dir>, configures and builds its raster as the README's
 commands do (.ci/build, without .ci/setup's packages; through ccache where this build used it), then
@@ -35,16 +36,36 @@ GENERIC_LINES = {
     "for (int c = 0; c < 3; ++c) {",
     "RenderTargetBlendDesc& rt = blend.renderTarget[0];",
 }
-# The library's lecture code, which draws the lecture's own scenes (fire, particles, sprites, the
-# media), holds some labs' answers: the billboards' geometry and pixel shaders
-# (fire_shaders.hpp), the sprite methods' corners (sprite_shaders.hpp), the forward Euler step and
-# the metaballs' density of the ray-marching lab (media/). The handout ships that code to build those
-# scenes; these files' answer lines are reported, not failed on.
+# Answer lines that the handout holds in the library's own lecture code, file by file, exactly: the
+# lecture's scenes that the handout builds draw with them (docs/HANDOUT.md, "What the handout gives
+# away"). A file's answer lines must be these and no others (a new one fails, and so does one that is
+# no longer there, so that this list stays what the handout holds):
+#   src/lecture/fire_shaders.hpp    the fire's gsBillboard and psFire: the billboards lab's LAB 1, LAB 2
+#   src/lecture/sprite_shaders.hpp  the `sprites` and `forest` scenes: sprite-methods' LAB 2 and LAB 4
+#   media/metaballs.hpp, march.hpp  the public media API (phase functions, density, march steps) that
+#                                   the lecture's media scenes and its slides publish: ray-marching's
+#                                   LAB 1 (the Euler step) and LAB 4 (the metaballs' density)
 LIBRARY_ANSWERS = {
-    "raster/lecture/src/lecture/fire_shaders.hpp",
-    "raster/lecture/src/lecture/sprite_shaders.hpp",
-    "raster/lecture/include/raster/media/march.hpp",
-    "raster/lecture/include/raster/media/metaballs.hpp",
+    "raster/lecture/src/lecture/fire_shaders.hpp": {
+        "const float bx = billboardSize.x, by = billboardSize.y;",
+        "stream.Append({c + glm::vec4(bx, by, 0, 0), {1, 0}});",
+        "stream.Append({c + glm::vec4(bx, -by, 0, 0), {1, 1}});",
+        "stream.Append({c + glm::vec4(-bx, by, 0, 0), {0, 0}});",
+        "stream.Append({c + glm::vec4(-bx, -by, 0, 0), {0, 1}});",
+        "return billboardTexture->Sample(sampler, in.tex);",
+    },
+    "raster/lecture/src/lecture/sprite_shaders.hpp": {
+        "corner.x += in.size * in.corner.x;",
+        "corner.y += in.size * in.corner.y;",
+        "const glm::vec3 right = glm::normalize(side);",
+    },
+    "raster/lecture/include/raster/media/metaballs.hpp": {
+        "const glm::vec3 v = x - ball.centre;",
+        "const float u = glm::dot(v, v) / (ball.radius * ball.radius);",
+    },
+    "raster/lecture/include/raster/media/march.hpp": {
+        "return L + ds * (q - mu * L);",
+    },
 }
 MIN_ANSWER_LENGTH = 24  # shorter lines ("return x;", "}") are anyone's
 
@@ -149,10 +170,16 @@ def check_leaks(source, stage):
                 if mark.search(squeezed if squeeze else text):
                     problems.append("%s: names %s's hidden scene %s (%s)" % (rel, lab, name, mark.pattern))
         lines = {line.strip() for line in text.splitlines()}
+        known = LIBRARY_ANSWERS.get(rel, set())
         for answer, solution in answers.items():
             if answer in lines:
-                (reported if rel in LIBRARY_ANSWERS else problems).append(
+                (reported if answer in known else problems).append(
                     "%s: holds an answer line of %s: %s" % (rel, solution, answer))
+        for answer in sorted(known - (lines & set(answers))):
+            problems.append("%s: LIBRARY_ANSWERS lists an answer line it no longer holds (or that is no "
+                            "longer an answer): %s" % (rel, answer))
+    for rel in sorted(set(LIBRARY_ANSWERS) - {rel for rel, _ in files}):
+        problems.append("%s: listed in LIBRARY_ANSWERS, not in the handout" % rel)
     print("handout_test: %d files, %d answer lines and %d hidden scenes looked for" %
           (len(files), len(answers), len(hidden)))
     for line in reported:
@@ -163,13 +190,32 @@ def check_leaks(source, stage):
     return problems
 
 
+def dead_links(stage):
+    """Every relative link of the handout's Markdown that does not resolve inside the handout (a file
+    or a heading it lacks), as docs_links_test.py finds them in the project."""
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import docs_links_test  # the project's link checker: the same reading of Markdown
+
+    problems, checked = [], 0
+    for rel, path in handout_files(stage):
+        if not rel.endswith(".md"):
+            continue
+        checked += 1
+        for line, target, why in docs_links_test.broken_links(path):
+            problems.append("%s:%d: a link to %s: %s in the handout" % (rel, line, target, why))
+    print("handout_test: the links of %d Markdown files looked at" % checked)
+    if checked < 10:
+        problems.append("only %d Markdown files in the handout" % checked)
+    return problems
+
+
 def leaks(source, build, cmake):
     out = make_handout(source, build, cmake)
     stage = os.path.join(out, NAME)
     with tarfile.open(os.path.join(out, NAME + ".tar.gz")) as archive:
         archived = {m.name for m in archive.getmembers() if m.isfile()}
     on_disk = {NAME + "/" + rel for rel, _ in handout_files(stage)}
-    problems = check_leaks(source, stage)
+    problems = check_leaks(source, stage) + dead_links(stage)
     if archived != on_disk:
         problems.append("the archive and the folder differ: %s" % sorted(archived ^ on_disk)[:10])
     for must in (".ci/setup", ".ci/build", "README.md", "CMakeLists.txt", "labs/billboards/billboards.cpp",
@@ -264,6 +310,11 @@ def build(source, build_dir, cmake, work):
     if not launcher and os.environ.get("RASTER_HANDOUT_COLD") != "1":
         for p in problems:
             print("FAIL " + p)
+        if os.environ.get("CI"):
+            # .ci/build compiles through ccache where .ci/setup tests installed it: CI never skips.
+            print("FAIL handout_test: in CI (CI is set) this build compiles without ccache: was it "
+                  "configured by .ci/build with ccache installed (.ci/setup tests)?")
+            return 1
         print("handout_test: skipped the handout's build: this build compiles without ccache, so the "
               "handout's would take minutes (RASTER_HANDOUT_COLD=1 runs it)")
         return 1 if problems else 77

@@ -33,10 +33,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <string>
-#include <vector>
 
-#include "raster/lab.hpp"
+#include "raster/labs/stable_fog.hpp"
 
 namespace {
 
@@ -44,15 +42,14 @@ using namespace raster;
 
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
-// A homogeneous medium per channel (R, G, B): extinction sigma (1/m) and source term q (radiance per
-// metre). Height fog: both scaled by e^{b·y} at height y (b < 0: thinner higher up); constant fog: b
-// is not used.
-struct Medium {
-    glm::vec3 sigma{0.0f};
-    glm::vec3 q{0.0f};
-    float b = 0.0f;
-    bool height = false;
-};
+// Medium (sigma, q, b, height), PanelRays, the vertex formats, the panels' media and the scene that
+// draws the two pixel shaders below are the lab's scaffolding:
+// raster/lecture/include/raster/labs/stable_fog.hpp.
+using fog_lab::LitVertex;
+using fog_lab::Medium;
+using fog_lab::PanelRays;
+using fog_lab::SkyVertex;
+using fog_lab::StableFogScene;
 
 // ---- The fog functions ----------------------------------------------------------------------------
 // tau is the optical depth per unit sigma: the distance s for constant fog, τ(s) for height fog; it
@@ -151,18 +148,7 @@ glm::vec3 heightFog(glm::vec3 L0, const Medium& m, float y0, float dy, float s) 
     return fogged(L0, m, opticalDepth(y0, dy, s, m.b));
 }
 
-// ---- The scene (the lab's own, but for LAB 3 in PsSky) -----------------------------------------------
-
-// Each panel's camera: the pixel's view ray from its centre (SV_Position) and the camera's axes, so
-// that a camera looking level gives rays with dy = 0 exactly along a panel's middle row.
-struct PanelRays {
-    glm::vec3 eye{0.0f}, ahead{0.0f, 0.0f, -1.0f}, right{1.0f, 0.0f, 0.0f}, up{0.0f, 1.0f, 0.0f};
-    glm::vec2 origin{0.0f}, size{1.0f};  // the panel's viewport, pixels
-    glm::vec3 direction(float px, float py) const {
-        const float nx = 2.0f * (px - origin.x) / size.x - 1.0f, ny = 1.0f - 2.0f * (py - origin.y) / size.y;
-        return glm::normalize(ahead + nx * right + ny * up);
-    }
-};
+// ---- The pixel shaders (the scene: raster/labs/stable_fog.hpp) ------------------------------------
 
 // The radiance at the eye along the panel's ray through (px, py) from a surface L0 at distance s.
 glm::vec3 throughTheMedium(glm::vec3 L0, const Medium& m, const PanelRays& rays, float px, float py,
@@ -171,20 +157,6 @@ glm::vec3 throughTheMedium(glm::vec3 L0, const Medium& m, const PanelRays& rays,
     return heightFog(L0, m, rays.eye.y, rays.direction(px, py).y, s);
 }
 
-struct LitIn {
-    glm::vec3 position, normal;
-    RASTER_INPUT_SIGNATURE(LitIn, RASTER_INPUT(position, "POSITION", 0), RASTER_INPUT(normal, "NORMAL", 0))
-};
-struct LitVertex {
-    glm::vec4 position;
-    glm::vec3 worldPos, normal;
-};
-struct VsLit {
-    glm::mat4 viewProj{1.0f};
-    LitVertex operator()(const LitIn& in) const {
-        return {viewProj * glm::vec4(in.position, 1.0f), in.position, in.normal};
-    }
-};
 // A diffuse surface, L0 = albedo·(0.2 + 0.8·max(0, n·l)), seen through the panel's medium.
 struct PsFogged {
     Medium medium;
@@ -197,18 +169,6 @@ struct PsFogged {
         const float s = glm::length(in.worldPos - rays.eye);
         return {throughTheMedium(L0, medium, rays, in.position.x, in.position.y, s), 1.0f};
     }
-};
-
-struct SkyIn {
-    glm::vec2 ndc;
-    RASTER_INPUT_SIGNATURE(SkyIn, RASTER_INPUT(ndc, "POSITION", 0))
-};
-struct SkyVertex {
-    glm::vec4 position;
-};
-// A full-screen triangle at depth 1: drawn only where no surface is.
-struct VsSky {
-    SkyVertex operator()(const SkyIn& in) const { return {glm::vec4(in.ndc, 1.0f, 1.0f)}; }
 };
 
 // BEGIN LAB 3 (out of order)
@@ -237,69 +197,9 @@ struct PsSky {
 //> };
 // END LAB 3
 
-// The panels' media (the lecture's scenes fog-constant, fog-black, fog-coloured and fog-height draw the
-// same): grey-blue fog; the same without its source; three times as dense and sand-coloured; the
-// benchmark's height fog. The options' sigma and source replace every panel's (black fog keeps q = 0),
-// their falloff the height fog's.
-std::vector<Medium> panelMedia(const SceneOptions& o) {
-    const glm::vec3 grey{0.6f, 0.65f, 0.75f}, sand{0.85f, 0.55f, 0.25f};
-    const glm::vec3 thin{0.035f, 0.04f, 0.05f}, dense(0.12f), height{0.06f, 0.07f, 0.09f};
-    const float b = -o.fogFalloff.value_or(0.5f);
-    return {{o.fogSigma.value_or(thin), o.fogSource.value_or(thin * grey), 0.0f, false},
-            {o.fogSigma.value_or(thin), glm::vec3(0.0f), 0.0f, false},
-            {o.fogSigma.value_or(dense), o.fogSource.value_or(dense * sand), 0.0f, false},
-            {o.fogSigma.value_or(height), o.fogSource.value_or(height * grey), b, true}};
-}
-
-const SceneCamera kFogLabCamera{{0, 1.5f, 6}, {0, 0.5f, -10}};
-
-// Four panels of (width / 2) × (height / 2) pixels: constant and black fog on top, coloured and
-// height fog below. Each draws the world part by part (albedo), then the sky where nothing was drawn.
-class FogLab final : public LabScene {
-  public:
-    explicit FogLab(const SceneOptions& o) : world_(o.cubes), media_(panelMedia(o)) {
-        SceneOptions panel = o;
-        panel.width = std::max(1u, o.width / 2), panel.height = std::max(1u, o.height / 2);
-        const SceneCamera camera = o.camera.value_or(kFogLabCamera);
-        vs_.viewProj = sceneProjection(panel) * sceneView(camera);
-        const float tan_y = std::tan(glm::radians(o.fovDegrees.value_or(60.0f)) * 0.5f);
-        rays_.eye = camera.eye;
-        rays_.ahead = glm::normalize(camera.target - camera.eye);
-        rays_.right = glm::normalize(glm::cross(rays_.ahead, glm::vec3(0, 1, 0)));
-        rays_.up = glm::cross(rays_.right, rays_.ahead) * tan_y;
-        rays_.right *= tan_y * float(panel.width) / float(panel.height);
-        rays_.size = glm::vec2(float(panel.width), float(panel.height));
-    }
-
-    void render(Context& context, RenderTarget& color, DepthTarget& depth) override {
-        beginSceneFrame(context, color, depth);  // clear, bind, viewport, no culling
-        context.setBlendState(BlendState::opaque());
-        context.setPrimitiveTopology(Topology::TriangleList);
-        for (size_t k = 0; k < media_.size(); ++k) {
-            PanelRays rays = rays_;
-            rays.origin = glm::vec2(float(k % 2) * rays.size.x, float(k / 2) * rays.size.y);
-            context.setViewport({rays.origin.x, rays.origin.y, rays.size.x, rays.size.y, 0.0f, 1.0f});
-            context.setDepthStencilState({true, true, ComparisonFunc::Less});
-            context.setInputLayout(&world_.layout);
-            context.setVertexBuffer(0, &world_.lit);
-            for (const FogWorldData::Part& part : world_.parts)
-                if (part.count > 0)
-                    context.draw(vs_, PsFogged{media_[k], rays, part.albedo}, part.count, part.first);
-            context.setDepthStencilState({true, true, ComparisonFunc::LessEqual});
-            context.setInputLayout(&world_.skyLayout);
-            context.setVertexBuffer(0, &world_.sky);
-            context.draw(VsSky{}, PsSky{media_[k], rays}, 3);
-        }
-    }
-
-  private:
-    FogWorldData world_;
-    std::vector<Medium> media_;
-    PanelRays rays_;
-    VsLit vs_;
-};
+using FogLab = StableFogScene<PsFogged, PsSky>;
 
 }  // namespace
 
 RASTER_LAB("stable-fog", "Lab: fog in the pixel shader, in stable form (lecture 11, part 2)", FogLab,
-           kFogLabCamera)
+           fog_lab::kCamera)

@@ -69,30 +69,13 @@ float hash01(uint32_t a, uint32_t b) {
     return float(h >> 8) * (1.0f / 16777216.0f);
 }
 
-// RGBA8 texels, row 0 on top, from a function of the texel's centre (u, v) in [0, 1]².
-template <class F>
-Texture2D proceduralTexture(uint32_t width, uint32_t height, F texel) {
-    std::vector<uint8_t> rgba(size_t(width) * height * 4);
-    for (uint32_t j = 0; j < height; ++j)
-        for (uint32_t i = 0; i < width; ++i) {
-            const glm::u8vec4 c =
-                texel(i, j, (float(i) + 0.5f) / float(width), (float(j) + 0.5f) / float(height));
-            for (int k = 0; k < 4; ++k) rgba[4 * (size_t(j) * width + i) + k] = c[k];
-        }
-    return Texture2D::fromRgba8(width, height, rgba);
-}
+using sprite_lab::proceduralTexture;  // RGBA8 texels from a function of the texel and its centre (u, v)
 
 // ---- sprites ---------------------------------------------------------------------------------------
 
-// A target: white and grey rings, a dark cross, transparent outside the disc (alpha-tested away).
-Texture2D makeSpriteTexture() {
-    return proceduralTexture(64, 64, [](uint32_t, uint32_t, float u, float v) -> glm::u8vec4 {
-        const float x = 2.0f * u - 1.0f, y = 2.0f * v - 1.0f, r = std::sqrt(x * x + y * y);
-        if (r > 1.0f) return {0, 0, 0, 0};
-        if (std::abs(x) < 0.06f || std::abs(y) < 0.06f) return {40, 40, 40, 255};
-        return int(r * 4.0f) % 2 == 0 ? glm::u8vec4(255, 255, 255, 255) : glm::u8vec4(150, 150, 150, 255);
-    });
-}
+// A target: white and grey rings, a dark cross, transparent outside the disc (alpha-tested away): the
+// sprite-methods lab's, with a narrower cross.
+Texture2D makeSpriteTexture() { return sprite_lab::targetTexture(0.06f); }
 
 constexpr int kSpriteRows = 4, kSpritesPerRow = 9;
 constexpr float kSpriteScrollSeconds = 12.0f;  // a sprite crosses the image in this time

@@ -61,6 +61,30 @@ foreach(path IN LISTS tracked)
   endif()
 endforeach()
 file(COPY_FILE ${CMAKE_CURRENT_LIST_DIR}/README.md ${stage}/README.md)
+# The handout's Markdown links to nothing it leaves out: a relative link whose file is not in the
+# handout (docs/GRADING.md, slides/...) becomes its text. tests/handout_test.py checks that every
+# relative link of the handout's Markdown resolves inside it.
+file(GLOB_RECURSE markdown RELATIVE ${stage} ${stage}/*.md)
+set(unlinked 0)
+foreach(doc IN LISTS markdown)
+  file(READ ${stage}/${doc} text)
+  get_filename_component(doc_dir ${stage}/${doc} DIRECTORY)
+  string(REGEX MATCHALL "!?\\[[^]\n]*\\]\\([^)\n]*\\)" links "${text}")
+  set(changed FALSE)
+  foreach(link IN LISTS links)
+    string(REGEX REPLACE "^!?\\[([^]]*)\\]\\(.*$" "\\1" words "${link}")
+    string(REGEX REPLACE "^!?\\[[^]]*\\]\\([ <]*([^)#> ]*).*$" "\\1" target "${link}")
+    if(target STREQUAL "" OR target MATCHES "^[A-Za-z][A-Za-z0-9+.-]*:" OR EXISTS ${doc_dir}/${target})
+      continue()
+    endif()
+    string(REPLACE "${link}" "${words}" text "${text}")
+    set(changed TRUE)
+    math(EXPR unlinked "${unlinked} + 1")
+  endforeach()
+  if(changed)
+    file(WRITE ${stage}/${doc} "${text}")
+  endif()
+endforeach()
 
 # The reference images: what K shows, J compares with and `raster grade --public` grades against.
 execute_process(COMMAND ${RASTER} references ${stage} --grading-root ${SOURCE_DIR}
@@ -80,4 +104,4 @@ endif()
 file(SIZE ${OUTPUT_DIR}/${name}.tar.gz bytes)
 math(EXPR total "${count} + 1 + ${reference_count}")
 message(STATUS "handout: ${OUTPUT_DIR}/${name}.tar.gz, ${bytes} bytes: ${total} files (${reference_count} "
-               "reference images), and the folder ${stage}")
+               "reference images; ${unlinked} links to files it leaves out made text), and the folder ${stage}")

@@ -38,6 +38,7 @@
 #include <vector>
 
 #include "lecture/fire_particle_shaders.hpp"
+#include "raster/labs/sprite_methods.hpp"
 #include "raster/format.hpp"
 #include "raster/input_layout.hpp"
 #include "raster/sampler.hpp"
@@ -46,25 +47,14 @@
 
 namespace raster::shaders {
 
-// One corner of a sprite's quad (six a sprite: two triangles) for (a), (b) and the eye-facing sprite.
-// (c) reads one FireParticleIn a sprite instead (position, size, colour).
-struct SpriteQuadIn {
-    glm::vec3 centre;  // world space
-    float size;        // world units: the quad's half-width
-    glm::vec4 colour;  // tint
-    glm::vec2 corner;  // (±1, ±1): which corner
-    RASTER_INPUT_SIGNATURE(SpriteQuadIn, RASTER_INPUT(centre, "POSITION", 0), RASTER_INPUT(size, "SIZE", 0),
-                           RASTER_INPUT(colour, "COLOR", 0), RASTER_INPUT(corner, "TEXCOORD", 0))
-};
-
-// The corners in gsBillboard's order, as its strip's two triangles (v0 v1 v2) and (v1 v3 v2), so that
-// a quad drawn as a triangle list is cut along the same diagonal as (c)'s.
-inline constexpr glm::vec2 kSpriteCorners[6] = {{1, 1}, {1, -1}, {-1, 1}, {1, -1}, {-1, -1}, {-1, 1}};
-
-// gsBillboard's texture coordinates: (1,1) → (1,0), (1,−1) → (1,1), (−1,1) → (0,0), (−1,−1) → (0,1).
-inline glm::vec2 spriteTexCoord(glm::vec2 corner) {
-    return {0.5f * (corner.x + 1.0f), 0.5f * (1.0f - corner.y)};
-}
+// One corner of a sprite's quad (six a sprite: two triangles) for (a), (b) and the eye-facing sprite:
+// the sprite-methods lab's format, centre, size (the quad's half-width), tint, corner (±1, ±1); (c)
+// reads one FireParticleIn a sprite instead (position, size, colour). The corners' order
+// (kSpriteCorners, gsBillboard's strip as two triangles) and their texture coordinates
+// (spriteTexCoord) are the lab's too (raster/labs/sprite_methods.hpp).
+using SpriteQuadIn = sprite_lab::SpriteCornerIn;
+using sprite_lab::kSpriteCorners;
+using sprite_lab::spriteTexCoord;
 
 // (a) Classic transforms. cameraToWorld is R⁻¹ = Rᵀ (the transpose of the view matrix's upper 3×3):
 // the model matrix turns the quad's plane z = 0 to the camera plane, viewProj = P · V does the rest.
@@ -76,7 +66,7 @@ struct VsSpriteClassic {
         glm::mat4 model(cameraToWorld);
         model[3] = glm::vec4(in.centre, 1.0f);
         const glm::vec4 local(in.size * in.corner.x, in.size * in.corner.y, 0.0f, 1.0f);
-        return {viewProj * (model * local), spriteTexCoord(in.corner), in.colour};
+        return {viewProj * (model * local), spriteTexCoord(in.corner), in.tint};
     }
 };
 
@@ -88,7 +78,7 @@ struct VsSpriteOwn {
         glm::vec4 corner = view * glm::vec4(in.centre, 1.0f);
         corner.x += in.size * in.corner.x;
         corner.y += in.size * in.corner.y;
-        return {proj * corner, spriteTexCoord(in.corner), in.colour};
+        return {proj * corner, spriteTexCoord(in.corner), in.tint};
     }
 };
 
@@ -104,7 +94,7 @@ struct VsSpriteFacingEye {
         const glm::vec3 right = glm::normalize(glm::cross(cameraUp, normal));
         const glm::vec3 up = glm::cross(normal, right);
         const glm::vec3 world = in.centre + in.size * (in.corner.x * right + in.corner.y * up);
-        return {viewProj * glm::vec4(world, 1.0f), spriteTexCoord(in.corner), in.colour};
+        return {viewProj * glm::vec4(world, 1.0f), spriteTexCoord(in.corner), in.tint};
     }
 };
 
@@ -209,14 +199,7 @@ struct PsAlphaTested {
 
 // ---- Input layouts: the D3D11_INPUT_ELEMENT_DESC arrays of the structs above, offsets by offsetof ----
 
-inline InputLayout spriteQuadLayout() {
-    const InputElementDesc elements[] = {
-        {"POSITION", 0, Format::R32G32B32_FLOAT, 0, uint32_t(offsetof(SpriteQuadIn, centre))},
-        {"SIZE", 0, Format::R32_FLOAT, 0, uint32_t(offsetof(SpriteQuadIn, size))},
-        {"COLOR", 0, Format::R32G32B32A32_FLOAT, 0, uint32_t(offsetof(SpriteQuadIn, colour))},
-        {"TEXCOORD", 0, Format::R32G32_FLOAT, 0, uint32_t(offsetof(SpriteQuadIn, corner))}};
-    return InputLayout(elements);
-}
+inline InputLayout spriteQuadLayout() { return sprite_lab::spriteCornerLayout(); }
 
 // (c)'s: one FireParticleIn a sprite.
 inline InputLayout spritePointLayout() {
