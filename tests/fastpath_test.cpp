@@ -4,16 +4,22 @@
 //    hands out the edge functions edgeAt gives, for random, thin and tile-straddling triangles;
 //  - rectangle.hpp: a billboard strip set up as a rectangle covers exactly the pixels of its two
 //    triangles, is culled exactly when its first triangle is, and carries the triangles' attributes;
-//  - interpolate_wide.hpp: attributes interpolated eight wide are the scalar rule's bits per lane.
+//  - interpolate_wide.hpp: attributes interpolated eight wide are the scalar rule's bits per lane;
+//  - merge_wide.hpp: a block's (and a pair's) depth write and blend store the bytes of the output
+//    merger's steps lane by lane, with either choice for no-op lanes, and count the no-ops alike.
 #include <gtest/gtest.h>
 
 #include <bit>
 #include <cstdint>
+#include <cstring>
+#include <limits>
 #include <random>
 #include <vector>
 
 #include "raster/fastpath/block_coverage.hpp"
 #include "raster/fastpath/interpolate_wide.hpp"
+#include "raster/fastpath/merge_policy.hpp"
+#include "raster/fastpath/merge_wide.hpp"
 #include "raster/fastpath/rectangle.hpp"
 #include "raster/stages/5_setup.hpp"
 #include "raster/stages/7_rasterizer.hpp"
@@ -235,6 +241,98 @@ TEST(InterpolateWide, AttributesAreTheScalarRulesBitsLaneByLane) {
             });
     }
     EXPECT_GT(lanes, 100000);
+}
+
+// ---- merge_wide.hpp ---------------------------------------------------------------------------------
+
+// Colours for eight lanes: alpha 0 in about a third (the additive blend's no-ops), NaN and values
+// outside [0, 1] now and then (the blend saturates them).
+glm::vec<4, Float8> randomColours(std::mt19937& rng) {
+    std::uniform_real_distribution<float> unit(-0.25f, 1.25f);
+    std::uniform_int_distribution<int> kind(0, 11);
+    float lanes[4][8];
+    for (int l = 0; l < 8; ++l) {
+        for (int k = 0; k < 4; ++k) lanes[k][l] = unit(rng);
+        const int which = kind(rng);
+        if (which < 4) lanes[3][l] = 0.0f;
+        if (which == 4) lanes[l % 3][l] = std::numeric_limits<float>::quiet_NaN();
+    }
+    auto channel = [&](int k) {
+        simd::F32x8 v;
+        std::memcpy(&v, lanes[k], sizeof v);
+        return Float8(v);
+    };
+    return {channel(0), channel(1), channel(2), channel(3)};
+}
+
+Float8 randomDepths(std::mt19937& rng) {
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    simd::F32x8 v;
+    for (int l = 0; l < 8; ++l) v[l] = unit(rng);
+    return Float8(v);
+}
+
+// Blocks (0, 0) and (4, 0) of an 8×2 target through WideMerge, against the output merger's steps for
+// one fragment after a passed depth test (Tile::depthTestAndBlend: depth written, then blended unless
+// the blend is a no-op), lane by lane.
+template <class Blender, NoOpLanes kNoOps>
+void expectWideMergeIsTheScalarSteps() {
+    using Depth = DepthFixed<ComparisonFunc::Less, true>;
+    using Color = ColorFast<Blender>;
+    std::mt19937 rng(45);
+    int no_op_lanes = 0;
+    for (int round = 0; round < 2000; ++round) {
+        std::vector<uint8_t> wide_rgba(64), rule_rgba(64);
+        std::vector<float> wide_depth(16), rule_depth(16);
+        for (size_t b = 0; b < 64; ++b) wide_rgba[b] = rule_rgba[b] = uint8_t(rng());
+        for (size_t p = 0; p < 16; ++p) wide_depth[p] = rule_depth[p] = float(p) / 16.0f;
+        WideMerge<Depth, Color, kNoOps> merge(Depth{wide_depth.data(), 8}, Color{wide_rgba.data(), 8});
+        const Depth rule_d{rule_depth.data(), 8};
+        const Color rule_c{rule_rgba.data(), 8};
+        const uint32_t live0 = uint32_t(rng()) & 0xFFu, live1 = round % 7 == 0 ? 0u : uint32_t(rng()) & 0xFFu;
+        const glm::vec<4, Float8> c0 = randomColours(rng), c1 = randomColours(rng);
+        const Float8 z0 = randomDepths(rng), z1 = randomDepths(rng);
+        if (round % 2 == 0) {
+            merge.block(0, 0, z0, live0, c0);
+            merge.block(4, 0, z1, live1, c1);
+        } else {
+            glm::vec<4, Float8x2> c;
+            for (int k = 0; k < 4; ++k) c[k] = Float8x2(c0[k], c1[k]);
+            merge.pair(0, 0, z0, z1, live0, live1, c);
+        }
+        uint64_t rule_no_ops = 0;
+        for (int block = 0; block < 2; ++block) {
+            const uint32_t live = block ? live1 : live0;
+            const glm::vec<4, Float8>& c = block ? c1 : c0;
+            const Float8& z = block ? z1 : z0;
+            for (int l = 0; l < 8; ++l) {
+                if (!(live >> l & 1u)) continue;
+                const int32_t x = 4 * block + (l & 3), y = l >> 2;
+                rule_d.write(x, y, z[l]);
+                const glm::vec4 colour(c.x[l], c.y[l], c.z[l], c.w[l]);
+                if (rule_c.isNoOp(colour))
+                    ++rule_no_ops;
+                else
+                    rule_c.write(x, y, colour);
+            }
+        }
+        no_op_lanes += int(rule_no_ops);
+        ASSERT_EQ(wide_rgba, rule_rgba) << "round " << round;
+        ASSERT_EQ(std::memcmp(wide_depth.data(), rule_depth.data(), 16 * sizeof(float)), 0) << "round " << round;
+        ASSERT_EQ(merge.noOps(), rule_no_ops) << "round " << round;
+    }
+    if constexpr (Color::kAlphaZeroNoOp) EXPECT_GT(no_op_lanes, 2000) << "the no-op lanes were exercised";
+}
+
+TEST(WideMerge, AdditiveSkippingNoOpsStoresTheRulesBytes) {
+    expectWideMergeIsTheScalarSteps<BlendAdditiveRgba8, NoOpLanes::Skipped>();
+}
+TEST(WideMerge, AdditiveWritingNoOpsStoresTheRulesBytes) {
+    expectWideMergeIsTheScalarSteps<BlendAdditiveRgba8, NoOpLanes::Written>();
+}
+TEST(WideMerge, ReplaceStoresTheRulesBytes) {
+    expectWideMergeIsTheScalarSteps<BlendReplaceRgba8, NoOpLanes::Skipped>();
+    expectWideMergeIsTheScalarSteps<BlendReplaceRgba8, NoOpLanes::Written>();
 }
 
 }  // namespace

@@ -18,6 +18,7 @@
 
 #include "raster/fastpath/block_coverage.hpp"
 #include "raster/fastpath/interpolate_wide.hpp"
+#include "raster/fastpath/merge_wide.hpp"
 #include "raster/fill/tile.hpp"
 
 namespace raster {
@@ -44,8 +45,7 @@ class DeferredTile {
     [[gnu::always_inline]] explicit DeferredTile(T& tile)
         : t_(tile),
           rect_(tile.rect),
-          depth_(tile.draw.depth),
-          color_(tile.draw.color),
+          merge_(tile.draw.depth, tile.draw.color),
           shader_(tile.wideShader) {}
 
     // The tile's triangles, or 0 where the tile does not qualify (a primitive of another kind, or a
@@ -83,9 +83,9 @@ class DeferredTile {
                     t, edgeSteps(t), rect_,
                     [&](int32_t x, int32_t y, uint32_t mask, const int64_t(&e)[3][8]) {
                         const Float8 z = interpolateDepthWide(t, e, min_depth, max_depth);
-                        const uint32_t live = t_.depthTestBlock(depth_, x, y, z, mask);
+                        const uint32_t live = t_.depthTestBlock(merge_.depth(), x, y, z, mask);
                         if (!live) return;
-                        depth_.writeWide(x, y, z, live);
+                        merge_.depth().writeWide(x, y, z, live);
                         passed += uint64_t(std::popcount(live));
                         uint32_t* row = &owner_[y - rect_.y0][x - rect_.x0];
                         simd::I32x8 ids = loadBlock(row, row + kTileSize).v;
@@ -125,13 +125,17 @@ class DeferredTile {
                     const Float8 z = interpolateDepthWide(*shown_->t, e, t_.draw.minDepth, t_.draw.maxDepth);
                     const glm::vec<4, Float8> c =
                         t_.shadeBlockWide(shader_, shown_->ti, e, shown_->verts, x, y, z, live);
-                    color_.writeWide(x, y, c, live);
+                    merge_.colour(x, y, live, c);
                     shaded += uint64_t(std::popcount(live));
                 }
             }
         }
         return shaded;
     }
+
+    // Lanes the shading pass merged whose blend changed nothing (none under the replace blend that
+    // makes a draw deferrable; counted all the same, as every path counts them).
+    uint64_t noOps() const { return merge_.noOps(); }
 
   private:
     // The tile's triangles by their place in its list, for the shading pass.
@@ -179,16 +183,17 @@ class DeferredTile {
             interpolateAttributesWide(shown_->ti, e, shown_->verts, x + 4 * h, y, z, in[h]);
         }
         const glm::vec<4, Float8x2> c = t_.shadePairWide(shader_, in[0], in[1], live_left, live_right);
-        color_.writeWide(x, y, detail::blockOf(c, 0), live_left);
-        color_.writeWide(x + 4, y, detail::blockOf(c, 1), live_right);
+        merge_.colour(x, y, live_left, detail::blockOf(c, 0));
+        merge_.colour(x + 4, y, live_right, detail::blockOf(c, 1));
         shaded += uint64_t(std::popcount(live_left) + std::popcount(live_right));
         return true;
     }
 
     T& t_;
     const PixelRect rect_;
-    const Depth depth_;
-    const Color color_;
+    // The depth pass writes depth itself (it notes owners as it goes); the shading pass blends
+    // through the merge.
+    WideMerge<Depth, Color, NoOpLanes::Written> merge_;
     const Shader shader_;
     // owner_[row][column] within the tile: the triangle whose fragment the pixel shows; ~0 where no
     // fragment of this draw passed.
@@ -206,7 +211,8 @@ RASTER_FLATTEN bool fillDeferredTile(T& tile) {
         DeferredTile<T> deferred(tile);
         const uint64_t passed = deferred.depthPass(triangles);
         const uint64_t shaded = deferred.shadePass();
-        tile.st.fragmentsOverdrawSkipped += passed - shaded;
+        tile.countOverdrawSkipped(passed - shaded);
+        tile.countBlendNoOps(deferred.noOps());
         return true;
     } else {
         return false;

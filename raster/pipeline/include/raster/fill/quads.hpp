@@ -104,7 +104,7 @@ void fillLine(T& tile, const LineSetup& l, const typename T::Vertex* const (&ver
         Real z;
         interpolateLine<Real>(l, verts, x, y, t, tile.draw.minDepth, tile.draw.maxDepth, in, z);
         if (!tile.earlyDepthPasses(x, y, z)) return;
-        ++tile.st.psInvocations;
+        tile.countShaded(1, 0);
         tile.merge(x, y, z, tile.shader.shadeSingle(in));
     });
 }
@@ -120,7 +120,7 @@ void fillPoint(T& tile, const PointSetup& pt, const typename T::Vertex& vertex) 
     const float w = in.position.w;
     in.position = glm::vec4(float(pt.px) + 0.5f, float(pt.py) + 0.5f, float(z), w);
     if (!tile.earlyDepthPasses(pt.px, pt.py, z)) return;
-    ++tile.st.psInvocations;
+    tile.countShaded(1, 0);
     tile.merge(pt.px, pt.py, z, tile.shader.shadeSingle(in));
 }
 

@@ -20,6 +20,7 @@
 #include <cstring>
 #include <type_traits>
 
+#include "raster/fastpath/merge_wide.hpp"
 #include "raster/fastpath/rectangle.hpp"
 #include "raster/fill/tile.hpp"
 
@@ -58,13 +59,13 @@ class RectangleBlocks {
           step_y_(step_y),
           z_(z),
           tile_(tile.rect),
-          depth_(tile.draw.depth),
-          color_(tile.draw.color),
+          merge_(tile.draw.depth, tile.draw.color),
           shader_(tile.wideShader),
-          x0_(intersect(r.box, tile_).x0),
-          x1_(intersect(r.box, tile_).x1),
-          y0_(intersect(r.box, tile_).y0),
-          y1_(intersect(r.box, tile_).y1),
+          box_(intersect(r.box, tile_)),
+          x0_(box_.x0),
+          x1_(box_.x1),
+          y0_(box_.y0),
+          y1_(box_.y1),
           cx0_(x0_ & ~3),
           bx_(r.box.x0),
           by_(r.box.y0),
@@ -114,33 +115,24 @@ class RectangleBlocks {
     uint32_t rowLanes(int32_t y) const { return (y >= y0_ ? 0x0Fu : 0u) | (y + 1 <= y1_ ? 0xF0u : 0u); }
 
     // A shaded block's live lanes into depth and colour, counted (targets with an eight-wide merge).
+    // No-op lanes are written too (NoOpLanes::Written, fastpath/merge_wide.hpp): a block wholly
+    // inside the rectangle is then stored without a lane select, and a block whose lanes are all
+    // no-ops (texels of alpha 0, a third of the particle scene's) costs a blend, not the mispredicted
+    // branch that skipped it (docs/PERFORMANCE.md: −3 %).
     [[gnu::always_inline]] void mergeBlock(int32_t x, int32_t y, const glm::vec<4, Float8>& c,
                                            uint32_t live) {
         if constexpr (kWideMerge) {
             if constexpr (!kAllPass) live_lanes_ += uint64_t(std::popcount(live));
-            depth_.writeWide(x, y, z8_, live);
-            no_ops_ += uint64_t(std::popcount(color_.noOpWide(c) & live));
-            // Every block is written, no-op lanes too (they add zero): a block wholly inside the
-            // rectangle is then stored without a lane select, and a block whose lanes are all no-ops
-            // (texels of alpha 0, a third of the particle scene's) costs a blend, not the
-            // mispredicted branch that skipped it (docs/PERFORMANCE.md: −3 %).
-            color_.writeWide(x, y, c, live);
+            merge_.block(x, y, z8_, live, c);
         }
     }
-    // mergeBlock for blocks x and x + 4 of a pair, the colour in one 16-lane blend where the target
-    // has one (ColorFast::writeWidePair): the pair sampler's 16-lane result then stays in its
-    // register, which two eight-lane blends split (docs/PERFORMANCE.md).
+    // mergeBlock for blocks x and x + 4 of a pair (WideMerge::pair: one 16-lane blend where the
+    // target has one).
     [[gnu::always_inline]] void mergePair(int32_t x, int32_t y, const glm::vec<4, Float8x2>& c,
                                           uint32_t live0, uint32_t live1) {
-        if constexpr (kWideMerge && Color::kWidePair) {
-            const uint32_t live = live0 | (live1 << 8);
-            if constexpr (!kAllPass) live_lanes_ += uint64_t(std::popcount(live));
-            depth_.writeWide(x, y, z8_, live0);
-            depth_.writeWide(x + 4, y, z8_, live1);
-            no_ops_ += uint64_t(std::popcount(color_.writeWidePair(x, y, c, live) & live));
-        } else {
-            mergeBlock(x, y, detail::blockOf(c, 0), live0);
-            mergeBlock(x + 4, y, detail::blockOf(c, 1), live1);
+        if constexpr (kWideMerge) {
+            if constexpr (!kAllPass) live_lanes_ += uint64_t(std::popcount(live0) + std::popcount(live1));
+            merge_.pair(x, y, z8_, z8_, live0, live1, c);
         }
     }
     // The lanes of a block inside the tile in `covered` that pass the depth test, counted (without
@@ -153,7 +145,7 @@ class RectangleBlocks {
         // depends on InFront (ill-formed, no diagnostic required).
         if constexpr (Depth::kWide) {
             if constexpr (!kAllPass) {
-                if (!rows_in_front_) live &= depth_.testWide(x, y, z8_);
+                if (!rows_in_front_) live &= merge_.depth().testWide(x, y, z8_);
                 passed_ += uint64_t(std::popcount(live));
             }
         }
@@ -171,7 +163,7 @@ class RectangleBlocks {
     [[gnu::always_inline]] void shadeLive(int32_t x, int32_t y, uint32_t live, const Float8 (&row_part)[kN]) {
         if constexpr (kWideMerge) {
             if constexpr (Color::kCeiling)
-                if (skipped(color_.template atCeiling<1>(x, y), live)) return;
+                if (skipped(merge_.color().template atCeiling<1>(x, y), live)) return;
             ++blocks_;
             mergeBlock(x, y, shader_(inputs(x, row_part)), live);
         }
@@ -198,7 +190,7 @@ class RectangleBlocks {
             // Both blocks at once (one branch, not two): a pair with one block at the ceiling is
             // shaded whole, which stores that block unchanged.
             if constexpr (Color::kCeiling)
-                if (skipped(color_.template atCeiling<2>(x, y), live0 | (live1 << 8))) return;
+                if (skipped(merge_.color().template atCeiling<2>(x, y), live0 | (live1 << 8))) return;
             const glm::vec<4, Float8x2> c2 =
                 shader_(detail::zipBlocks<V>(inputs(x, row_part), inputs(x + 4, row_part)));
             blocks_ += 2;
@@ -335,13 +327,11 @@ class RectangleBlocks {
     // the shaded ones are the rest after the transparent and ceiling skips.
     void count() {
         if constexpr (kAllPass) live_lanes_ += whole_lanes_ - transparent_ - ceiling_, passed_ = whole_lanes_;
-        PipelineStatistics& st = t_.st;
-        st.psInvocations += live_lanes_;
-        st.helperInvocations += 8 * blocks_ - live_lanes_;
-        st.fragmentsEarlyDepthKilled += whole_lanes_ - passed_;
-        st.fragmentsBlendNoOp += no_ops_;
-        st.fragmentsBlendSaturated += ceiling_;
-        st.fragmentsTransparentSkipped += transparent_;
+        t_.countShaded(live_lanes_, 8 * blocks_ - live_lanes_);
+        t_.countEarlyDepthKilled(whole_lanes_ - passed_);
+        t_.countBlendNoOps(merge_.noOps());
+        t_.countSaturated(ceiling_);
+        t_.countTransparentSkipped(transparent_);
     }
 
     T& t_;
@@ -349,18 +339,17 @@ class RectangleBlocks {
     const float *base_, *step_x_, *step_y_;
     const Real z_;
     const PixelRect tile_;
-    const Depth depth_;
-    const Color color_;
+    WideMerge<Depth, Color, NoOpLanes::Written> merge_;
     const Shader shader_;
-    const int32_t x0_, x1_, y0_, y1_;  // the rectangle's box within the tile
+    const PixelRect box_;              // the rectangle's box within the tile
+    const int32_t x0_, x1_, y0_, y1_;  // box_'s
     const int32_t cx0_;                // the first block column's left pixel
     const int32_t bx_, by_;            // the box's top-left pixel: attribute plane origin
     Float8 plane_[kN], plane_x_[kN], plane_y_[kN];
     Float8 column_part_[kN][kMaxBlocks];  // columnParts(), block column c at pixel cx0_ + 4c
     const Float8 z8_;
     // Counted per block only what cannot be counted per rectangle (see count()).
-    uint64_t blocks_ = 0, live_lanes_ = 0, no_ops_ = 0, ceiling_ = 0, whole_lanes_ = 0, passed_ = 0,
-             transparent_ = 0;
+    uint64_t blocks_ = 0, live_lanes_ = 0, ceiling_ = 0, whole_lanes_ = 0, passed_ = 0, transparent_ = 0;
     bool rows_in_front_ = false;
 };
 

@@ -28,6 +28,7 @@
 #include "raster/fastpath/depth_bounds.hpp"
 #include "raster/fastpath/interpolate_wide.hpp"
 #include "raster/fastpath/merge_policy.hpp"
+#include "raster/fastpath/merge_wide.hpp"
 #include "raster/fastpath/rectangle.hpp"
 #include "raster/fastpath/transparency.hpp"
 #include "raster/shader.hpp"
@@ -77,11 +78,6 @@ template <class V>
     std::memcpy(static_cast<void*>(&out), f, sizeof f);
     return out;
 }
-// Block h (0 left, 1 right) of a Float8x2 shader's colour.
-inline glm::vec<4, Float8> blockOf(const glm::vec<4, Float8x2>& c, int h) {
-    return {c.x.h[h], c.y.h[h], c.z.h[h], c.w.h[h]};
-}
-
 }  // namespace detail
 
 // Which fill paths a draw may take, from its types alone. Real is float in the fast pipeline and
@@ -199,7 +195,7 @@ class Tile : public FillTraits<PS, Real, Hooks, Depth, Color> {
         if constexpr (Hooks::kEnabled) hooks.covered(x, y);
         if constexpr (Traits::kEarlyDepth && Depth::kEnabled) {
             if (!lateDepth() && !draw.depth.test(x, y, float(z))) {
-                ++st.fragmentsEarlyDepthKilled;
+                countEarlyDepthKilled(1);
                 if constexpr (Hooks::kEnabled)
                     hooks.close(hooks.open(x, y, float(z), false, glm::vec4(0.0f)),
                                  FragmentFate::EarlyDepthFailed);
@@ -213,19 +209,19 @@ class Tile : public FillTraits<PS, Real, Hooks, Depth, Color> {
     // depth write, blend.
     FragmentFate depthTestAndBlend(int32_t x, int32_t y, Real z, const Out& out) {
         if (isDiscarded(out)) {
-            ++st.fragmentsDiscarded;
+            countDiscarded(1);
             return FragmentFate::Discarded;
         }
         if constexpr (Depth::kEnabled) {
             if (lateDepth() && !draw.depth.test(x, y, float(z))) {
-                ++st.fragmentsLateDepthKilled;
+                countLateDepthKilled(1);
                 return FragmentFate::LateDepthFailed;
             }
         }
         draw.depth.write(x, y, float(z));
         const auto& colors = colorsOf(out);
         if (draw.color.isNoOp(colors)) {
-            ++st.fragmentsBlendNoOp;
+            countBlendNoOps(1);
             return FragmentFate::BlendNoOp;
         }
         draw.color.write(x, y, colors);
@@ -267,7 +263,7 @@ class Tile : public FillTraits<PS, Real, Hooks, Depth, Color> {
             live |= 1u << lane;
         }
         if (!live) return;
-        st.psInvocations += uint64_t(std::popcount(live));
+        countShaded(uint64_t(std::popcount(live)), 0);  // its helpers: counted by the shader stage
         shader.shade(
             in, live, out, [&](int lane, V& helper) { fill(lane, depth_at(lane), helper); }, st);
         for (uint32_t m = live; m; m &= m - 1) {
@@ -280,7 +276,7 @@ class Tile : public FillTraits<PS, Real, Hooks, Depth, Color> {
     // those that fail counted.
     uint32_t depthTestBlock(const Depth& depth, int32_t x, int32_t y, Float8 z, uint32_t covered) {
         const uint32_t live = covered & depth.testWide(x, y, z);
-        st.fragmentsEarlyDepthKilled += uint64_t(std::popcount(covered & ~live));
+        countEarlyDepthKilled(uint64_t(std::popcount(covered & ~live)));
         return live;
     }
     // One 4×2 block's inputs through an eight-wide shader, its invocations (lanes in `live`) and
@@ -288,9 +284,8 @@ class Tile : public FillTraits<PS, Real, Hooks, Depth, Color> {
     template <class Shader, class In>
     glm::vec<4, Float8> shadeInputWide(const Shader& s, const In& in, uint32_t live) {
         const glm::vec<4, Float8> c = s(in);
-        const int n = std::popcount(live);
-        st.psInvocations += uint64_t(n);
-        st.helperInvocations += uint64_t(8 - n);
+        const uint64_t n = uint64_t(std::popcount(live));
+        countShaded(n, 8 - n);
         return c;
     }
     // One 4×2 block of a triangle through an eight-wide shader: its attributes interpolated, then
@@ -311,11 +306,28 @@ class Tile : public FillTraits<PS, Real, Hooks, Depth, Color> {
     glm::vec<4, Float8x2> shadePairWide(const Shader& s, const WideIn& left, const WideIn& right,
                                         uint32_t live_left, uint32_t live_right) {
         const glm::vec<4, Float8x2> c = s(detail::zipBlocks<V>(left, right));
-        const int n = std::popcount(live_left) + std::popcount(live_right);
-        st.psInvocations += uint64_t(n);
-        st.helperInvocations += uint64_t(16 - n);
+        const uint64_t n = uint64_t(std::popcount(live_left) + std::popcount(live_right));
+        countShaded(n, 16 - n);
         return c;
     }
+
+    // ---- What happened to the tile's fragments (statistics.hpp says what each counter means). Every
+    // fill path counts through these, per fragment or in sums, so that each counts alike.
+    // Fragments shaded, and helper lanes the same shader calls ran (lanes outside the primitive or
+    // failing the depth test, shaded for a 2×2 quad's or a 4×2 block's sake).
+    void countShaded(uint64_t fragments, uint64_t helpers) {
+        st.psInvocations += fragments;
+        st.helperInvocations += helpers;
+    }
+    void countEarlyDepthKilled(uint64_t n) { st.fragmentsEarlyDepthKilled += n; }
+    void countLateDepthKilled(uint64_t n) { st.fragmentsLateDepthKilled += n; }
+    void countDiscarded(uint64_t n) { st.fragmentsDiscarded += n; }
+    // Merged, but the blend could not change the pixel.
+    void countBlendNoOps(uint64_t n) { st.fragmentsBlendNoOp += n; }
+    // Passed the depth test, not shaded: each of the following says why.
+    void countSaturated(uint64_t n) { st.fragmentsBlendSaturated += n; }
+    void countTransparentSkipped(uint64_t n) { st.fragmentsTransparentSkipped += n; }
+    void countOverdrawSkipped(uint64_t n) { st.fragmentsOverdrawSkipped += n; }
 };
 
 }  // namespace raster

@@ -11,6 +11,7 @@
 
 #include "raster/fastpath/block_coverage.hpp"
 #include "raster/fastpath/interpolate_wide.hpp"
+#include "raster/fastpath/merge_wide.hpp"
 #include "raster/fill/tile.hpp"
 
 namespace raster {
@@ -61,19 +62,12 @@ RASTER_FLATTEN void fillTriangleWide(T& tile, const TriangleSetup& t,
     if constexpr (T::kWideMerge) {
         // What every block reads, in locals: the targets are written through uint8_t and float
         // pointers, which may alias anything, so through `tile` the compiler would load it again for
-        // every block.
+        // every block. The merge holds the depth and colour policies (fastpath/merge_wide.hpp).
         const PixelRect rect = tile.rect;
-        const Depth depth = tile.draw.depth;
-        const Color color = tile.draw.color;
+        WideMerge<Depth, Color, NoOpLanes::Skipped> merge(tile.draw.depth, tile.draw.color);
         const auto shader = tile.wideShader;
         const float min_depth = tile.draw.minDepth, max_depth = tile.draw.maxDepth;
-        PipelineStatistics& st = tile.st;
-        auto finishBlock = [&](int32_t x, int32_t y, Float8 z, uint32_t live, const glm::vec<4, Float8>& c) {
-            depth.writeWide(x, y, z, live);
-            const uint32_t noop = color.noOpWide(c) & live;
-            st.fragmentsBlendNoOp += uint64_t(std::popcount(noop));
-            if (live & ~noop) color.writeWide(x, y, c, live & ~noop);
-        };
+        uint64_t saturated = 0;
         // With a Float8x2 shader an inner block waits, interpolated, for the rasteriser's next
         // block: if that is its right neighbour, the two are shaded in one call (shadePairWide).
         // Blocks of one triangle cover distinct pixels, so delaying one's tests and writes past
@@ -89,7 +83,7 @@ RASTER_FLATTEN void fillTriangleWide(T& tile, const TriangleSetup& t,
         [[maybe_unused]] auto flush = [&] {
             if constexpr (T::kPairs) {
                 if (!waiting.held) return;
-                finishBlock(waiting.x, waiting.y, waiting.z, waiting.live,
+                merge.block(waiting.x, waiting.y, waiting.z, waiting.live,
                             tile.shadeInputWide(shader, waiting.in, waiting.live));
                 waiting.held = false;
             }
@@ -103,13 +97,13 @@ RASTER_FLATTEN void fillTriangleWide(T& tile, const TriangleSetup& t,
                 const Float8 z = interpolateDepthWide(t, e, min_depth, max_depth);
                 uint32_t live = mask;
                 if constexpr (Depth::kEnabled) {
-                    live = tile.depthTestBlock(depth, x, y, z, mask);
+                    live = tile.depthTestBlock(merge.depth(), x, y, z, mask);
                     if (!live) return;
                 }
                 // A block whose pixels are all at the blend's ceiling is not shaded (fill/rectangles.hpp).
                 if constexpr (Color::kCeiling) {
-                    if (color.template atCeiling<1>(x, y)) {
-                        st.fragmentsBlendSaturated += uint64_t(std::popcount(live));
+                    if (merge.color().template atCeiling<1>(x, y)) {
+                        saturated += uint64_t(std::popcount(live));
                         return;
                     }
                 }
@@ -119,18 +113,19 @@ RASTER_FLATTEN void fillTriangleWide(T& tile, const TriangleSetup& t,
                     if (waiting.held && waiting.y == y && waiting.x + 4 == x) {
                         const glm::vec<4, Float8x2> c =
                             tile.shadePairWide(shader, waiting.in, in, waiting.live, live);
-                        finishBlock(waiting.x, y, waiting.z, waiting.live, detail::blockOf(c, 0));
-                        finishBlock(x, y, z, live, detail::blockOf(c, 1));
+                        merge.pair(waiting.x, y, waiting.z, z, waiting.live, live, c);
                         waiting.held = false;
                     } else {
                         flush();
                         waiting = Waiting{true, x, y, live, z, in};
                     }
                 } else {
-                    finishBlock(x, y, z, live, tile.shadeBlockWide(shader, ti, e, verts, x, y, z, live));
+                    merge.block(x, y, z, live, tile.shadeBlockWide(shader, ti, e, verts, x, y, z, live));
                 }
             });
         flush();
+        tile.countBlendNoOps(merge.noOps());
+        tile.countSaturated(saturated);
     }
 }
 
