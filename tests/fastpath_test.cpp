@@ -321,7 +321,9 @@ void expectWideMergeIsTheScalarSteps() {
         ASSERT_EQ(std::memcmp(wide_depth.data(), rule_depth.data(), 16 * sizeof(float)), 0) << "round " << round;
         ASSERT_EQ(merge.noOps(), rule_no_ops) << "round " << round;
     }
-    if constexpr (Color::kAlphaZeroNoOp) EXPECT_GT(no_op_lanes, 2000) << "the no-op lanes were exercised";
+    if constexpr (Color::kAlphaZeroNoOp) {
+        EXPECT_GT(no_op_lanes, 2000) << "the no-op lanes were exercised";
+    }
 }
 
 TEST(WideMerge, AdditiveSkippingNoOpsStoresTheRulesBytes) {

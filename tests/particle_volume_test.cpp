@@ -8,10 +8,12 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -345,4 +347,52 @@ TEST(SmokeVolumeScene, VolumeTakesItsVoxelsPlusLittleAndCarriesTheParticlesMass)
     for (const ParticleSplat& s : particleSplats(particles, kOpticalDepthPerOpacity, kRadiusPerSize)) mass += s.mass;
     EXPECT_GT(mass, 0.0);
     EXPECT_NEAR(gridMass(v.grid), mass, mass * 0.005);
+}
+
+// `raster trace smoke-volume --pixel X,Y` and the viewer's march plot: a pixel's recorded march is the
+// one its shader ran. Over the ground drawn without particles, the rendered pixel is the march's
+// premultiplied colour plus T times that ground (the blend ONE, INV_SRC_ALPHA; within a unit of RGBA8);
+// the samples' radiance sums to L, they lie in [t0, t1] in order; and the march ends at the surface
+// the render left in the depth: before any render it runs to the volume's far side, further for the
+// pixels whose ray meets the ground or the box inside the volume.
+TEST(SmokeVolumeScene, PixelMarchIsTheRenderedPixelsMarch) {
+    const SceneOptions o = smallSmoke();
+    auto scene = makeScene("smoke-volume", o);
+    std::vector<std::optional<PixelMarch>> unclipped;
+    for (uint32_t y = 3; y < o.height; y += 7)
+        for (uint32_t x = 2; x < o.width; x += 5) unclipped.push_back(scene->pixelMarch(x, y, o.width, o.height));
+    Context context({2});
+    RenderTarget color(o.width, o.height);
+    DepthTarget depth(o.width, o.height);
+    scene->render(context, color, depth);
+    SceneOptions none = o;
+    none.count = 0u;
+    const std::vector<uint8_t> ground = renderBytes("smoke-volume", none, 2);
+    size_t marched = 0, cut = 0, k = 0;
+    for (uint32_t y = 3; y < o.height; y += 7) {
+        for (uint32_t x = 2; x < o.width; x += 5, ++k) {
+            const std::optional<PixelMarch> m = scene->pixelMarch(x, y, o.width, o.height);
+            ASSERT_TRUE(m.has_value() && unclipped[k].has_value());
+            const size_t p = (size_t(y) * o.width + x) * 4;
+            for (int c = 0; c < 3; ++c) {
+                const float expected = m->colour[c] + m->transmittance * float(ground[p + size_t(c)]) / 255.0f;
+                EXPECT_NEAR(float(color.rgba8()[p + size_t(c)]), 255.0f * std::min(expected, 1.0f), 1.01f)
+                    << "pixel (" << x << ", " << y << ") channel " << c;
+            }
+            glm::vec3 sum(0.0f);
+            float last = m->t0;
+            for (const media::MarchSample& s : m->samples) {
+                sum += s.added;
+                EXPECT_GE(s.s, last * (1.0f - 1e-6f));
+                EXPECT_LE(s.s, m->t1 * (1.0f + 1e-6f));
+                last = s.s;
+            }
+            for (int c = 0; c < 3; ++c) EXPECT_NEAR(sum[c], m->radiance[c], 1e-4f + 1e-4f * m->radiance[c]);
+            EXPECT_LE(m->t1, unclipped[k]->t1 * (1.0f + 1e-6f));
+            marched += !m->samples.empty();
+            cut += m->t1 > m->t0 && m->t1 < unclipped[k]->t1 * (1.0f - 1e-3f);
+        }
+    }
+    EXPECT_GT(marched, k / 10) << "pixels whose ray meets smoke";
+    EXPECT_GT(cut, 0u) << "pixels whose march the ground or box ends early";
 }

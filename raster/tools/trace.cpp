@@ -7,6 +7,7 @@
 //                   outputs, primitives after clipping and setup (the first --limit of each)
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstdint>
 #include <cstdio>
 #include <memory>
@@ -58,16 +59,21 @@ int toByte(float v) {
 
 // The march of a media scene's pixel: one line per evaluated sample (the skipped stretches, where the
 // medium is empty and nothing is added, summarised), then L, T and the colour, and the rendered
-// pixel's bytes beside the colour's.
-void printPixelMarch(const PixelMarch& m, uint32_t x, uint32_t y, const RenderTarget& color) {
-    std::printf("pixel (%u, %u): ray march, %u steps of ds=%.6g m over s in [%.6g, %.6g]; %zu samples evaluated, "
-                "%u density evaluations\n",
-                x, y, m.steps, double(m.ds), double(m.t0), double(m.t1), m.samples.size(), m.densityEvaluations);
+// pixel's bytes beside the colour's. A march blended over what earlier draws left (PixelMarch::over)
+// takes that pixel, dst, from the trace's history (the march's fragment's colour before it blended),
+// and compares colour + T·dst: the same bytes, or within one unit (the blend's own rounding).
+void printPixelMarch(const PixelMarch& m, uint32_t x, uint32_t y, const RenderTarget& color,
+                     const Trace& trace) {
+    std::printf(
+        "pixel (%u, %u): ray march, %u steps of ds=%.6g m over s in [%.6g, %.6g]; %zu samples evaluated, "
+        "%u density evaluations\n",
+        x, y, m.steps, double(m.ds), double(m.t0), double(m.t1), m.samples.size(), m.densityEvaluations);
     std::printf("%6s %10s %12s %12s %12s %12s %12s %12s %12s\n", "i", "s", "mu", "mu*ds", "T", "T_shadow",
                 "added.r", "added.g", "added.b");
     uint32_t next = 0;
     auto skipped = [&](uint32_t upto) {
-        if (upto > next) std::printf("%6s samples %u..%u skipped: empty, nothing added\n", "...", next, upto - 1);
+        if (upto > next)
+            std::printf("%6s samples %u..%u skipped: empty, nothing added\n", "...", next, upto - 1);
     };
     for (const media::MarchSample& s : m.samples) {
         skipped(s.index);
@@ -82,11 +88,36 @@ void printPixelMarch(const PixelMarch& m, uint32_t x, uint32_t y, const RenderTa
                 double(m.background.g), double(m.background.b));
     const std::vector<uint8_t> rgba = color.toRgba8();
     const uint8_t* p = rgba.data() + (size_t(y) * color.width() + x) * 4;
-    const int r = toByte(m.colour.r), g = toByte(m.colour.g), b = toByte(m.colour.b);
-    std::printf("colour = clamp(L + T*L_bg) = (%.9g, %.9g, %.9g) = rgb8 (%d, %d, %d)\n", double(m.colour.r),
-                double(m.colour.g), double(m.colour.b), r, g, b);
-    const bool same = p[0] == r && p[1] == g && p[2] == b;
-    std::printf("rendered pixel: rgb8 (%d, %d, %d) %s\n", p[0], p[1], p[2], same ? "same" : "DIFFERENT");
+    glm::vec3 expected = m.colour;
+    if (!m.over) {
+        std::printf("colour = clamp(L + T*L_bg) = (%.9g, %.9g, %.9g)", double(m.colour.r), double(m.colour.g),
+                    double(m.colour.b));
+    } else {
+        const std::vector<TraceFragment> history = trace.pixelHistory(int32_t(x), int32_t(y));
+        if (history.empty()) {
+            std::printf(
+                "colour (premultiplied) = (%.9g, %.9g, %.9g), blended over the pixel behind: no fragment "
+                "of the march's draw reached the pixel\n",
+                double(m.colour.r), double(m.colour.g), double(m.colour.b));
+            return;
+        }
+        const glm::vec3 dst(history.back().colorBefore);
+        const float inv_alpha = 1.0f - (1.0f - m.transmittance);  // INV_SRC_ALPHA of alpha = 1 − T
+        expected = m.colour + inv_alpha * dst;
+        std::printf(
+            "colour = rgb + T*dst = (%.9g, %.9g, %.9g), rgb = (%.9g, %.9g, %.9g) the shader's premultiplied "
+            "output blended over dst = (%.9g, %.9g, %.9g), the pixel before draw %u",
+            double(expected.r), double(expected.g), double(expected.b), double(m.colour.r),
+            double(m.colour.g), double(m.colour.b), double(dst.r), double(dst.g), double(dst.b),
+            history.back().draw);
+    }
+    const int r = toByte(expected.r), g = toByte(expected.g), b = toByte(expected.b);
+    std::printf(" = rgb8 (%d, %d, %d)\n", r, g, b);
+    const int off = std::max({std::abs(p[0] - r), std::abs(p[1] - g), std::abs(p[2] - b)});
+    std::printf("rendered pixel: rgb8 (%d, %d, %d) %s\n", p[0], p[1], p[2],
+                off == 0             ? "same"
+                : m.over && off == 1 ? "within one unit (the blend's rounding)"
+                                     : "DIFFERENT");
 }
 
 int runTrace(const TraceArgs& args) {
@@ -117,7 +148,7 @@ int runTrace(const TraceArgs& args) {
         const std::optional<PixelMarch> march = scene->pixelMarch(args.px, args.py, options.width, options.height);
         detail::tReferenceMode = false;
         if (march) {
-            printPixelMarch(*march, args.px, args.py, color);
+            printPixelMarch(*march, args.px, args.py, color, trace);
             TraceArgs rest = args;
             rest.pixel = false;
             printTrace(rest, context, trace);

@@ -145,26 +145,11 @@ public:
     // The pixel shader's march at the pixel's centre, every evaluated sample recorded; distances in
     // metres from the eye.
     std::optional<PixelMarch> pixelMarch(uint32_t x, uint32_t y, uint32_t width, uint32_t height) const override {
-        const glm::vec2 ndc{(float(x) + 0.5f) / float(width) * 2.0f - 1.0f,
-                            1.0f - (float(y) + 0.5f) / float(height) * 2.0f};
-        const glm::vec3 d = shaders::viewRay(ps_.invViewProj, ndc);
-        const glm::vec3 o = ps_.eyeVoxels();
-        const float metres = 1.0f / ps_.voxelsPerMetre;
-        PixelMarch march;
-        const media::MarchResult r =
-            media::marchCloud(volume_, ps_.light, ps_.settings, o, d, [&](media::MarchSample s) {
-                s.s *= metres;
-                march.samples.push_back(s);
-            });
-        const auto [s_near, s_far] = media::slabInterval(volume_.box, o, d);
-        const float s0 = std::max(s_near, 0.0f);
-        march.steps = s_far > s0 ? std::max(1u, uint32_t(std::ceil((s_far - s0) / ps_.settings.step))) : 0u;
-        march.t0 = s0 * metres, march.t1 = s_far * metres;
-        march.ds = march.steps > 0 ? (march.t1 - march.t0) / float(march.steps) : 0.0f;
-        march.radiance = r.radiance, march.transmittance = r.transmittance;
-        const glm::vec4 c = ps_.shade(d);
-        march.colour = glm::vec3(c);  // premultiplied: the ground behind adds T·dst
-        march.densityEvaluations = r.densityEvaluations;
+        const glm::vec3 d = shaders::viewRay(ps_.invViewProj, shaders::pixelNdc(x, y, width, height));
+        const auto [s_near, s_far] = media::slabInterval(volume_.box, ps_.eyeVoxels(), d);
+        PixelMarch march = ps_.tracedMarch(d, std::max(s_near, 0.0f), s_far);
+        march.colour = glm::vec3(ps_.shade(d));  // premultiplied: the ground behind adds T·dst
+        march.over = true;
         return march;
     }
 

@@ -37,9 +37,7 @@ public:
     // The pixel shader's march at the pixel's centre: ndc as the full-screen triangle interpolates it
     // there (y up), the shader's ray and settings, every evaluated sample recorded.
     std::optional<PixelMarch> pixelMarch(uint32_t x, uint32_t y, uint32_t width, uint32_t height) const override {
-        const glm::vec2 ndc{(float(x) + 0.5f) / float(width) * 2.0f - 1.0f,
-                            1.0f - (float(y) + 0.5f) / float(height) * 2.0f};
-        const glm::vec3 d = shaders::viewRay(ps_.invViewProj, ndc);
+        const glm::vec3 d = shaders::viewRay(ps_.invViewProj, shaders::pixelNdc(x, y, width, height));
         PixelMarch march;
         const media::MarchResult r = media::marchMetaballs(*ps_.volume, ps_.light, ps_.settings, ps_.eye, d,
                                                            [&](const media::MarchSample& s) { march.samples.push_back(s); });

@@ -12,6 +12,7 @@
 // --seed as `smoke`.
 #include <algorithm>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -71,6 +72,24 @@ public:
     std::string_view name() const override { return "smoke-volume"; }
     bool animated() const override { return true; }
     double time() const override { return time_; }
+
+    // The pixel shader's march at the pixel's centre, every evaluated sample recorded; distances in
+    // metres from the eye. It ends where the last render's opaque pass left its depth (the ground or
+    // the box); before a render at this size, at the volume's far side.
+    std::optional<PixelMarch> pixelMarch(uint32_t x, uint32_t y, uint32_t width,
+                                         uint32_t height) const override {
+        const glm::vec2 ndc = shaders::pixelNdc(x, y, width, height);
+        const glm::vec3 d = shaders::viewRay(ps_.march.invViewProj, ndc);
+        const DepthTexture& depth = ps_.sceneDepth;
+        const float z = depth.width() == width && depth.height() == height
+                            ? depth.atPixel(float(x) + 0.5f, float(y) + 0.5f)
+                            : 1.0f;  // a cleared depth: nothing in front of the volume's far side
+        const auto [s0, s1] = ps_.marchInterval(d, ndc, z);
+        PixelMarch march = ps_.march.tracedMarch(d, s0, s1);
+        march.colour = glm::vec3(ps_.shade(d, ndc, z));  // premultiplied: the ground behind adds T·dst
+        march.over = true;
+        return march;
+    }
 
     void render(Context& context, RenderTarget& color, DepthTarget& depth) override {
         ground_.render(context, color, depth);

@@ -24,7 +24,9 @@ struct MarchSample {
 
 // A pixel's march: its evaluated samples in order (the others lie in skipped empty space and add
 // nothing), the final radiance L (without the background), transmittance T, and the colour the pixel
-// shader returns, clamp(L + T·L_bg, 0, 1).
+// shader returns: clamp(L + T·L_bg, 0, 1) where the shader adds the background itself; where it is
+// blended over what earlier draws left (`over`: ONE, INV_SRC_ALPHA, alpha 1 − T), its premultiplied
+// rgb, and the pixel becomes rgb + T·dst.
 struct PixelMarch {
     std::vector<media::MarchSample> samples;
     uint32_t steps = 0;              // N: the march's steps over [t0, t1]
@@ -33,7 +35,8 @@ struct PixelMarch {
     glm::vec3 radiance{0.0f};        // L
     float transmittance = 1.0f;      // T
     glm::vec3 background{0.0f};      // L_bg
-    glm::vec3 colour{0.0f};          // clamp(L + T·L_bg, 0, 1)
+    glm::vec3 colour{0.0f};          // clamp(L + T·L_bg, 0, 1), or the premultiplied rgb where `over`
+    bool over = false;               // blended over the pixel behind: pixel = colour + T·dst
     uint32_t densityEvaluations = 0;  // view and shadow rays
 };
 

@@ -19,10 +19,12 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <type_traits>
 #include <glm/glm.hpp>
 
 #include "raster/media/cloud_march.hpp"
+#include "raster/pixel_march.hpp"
 #include "raster/shaders/fog.hpp"
 #include "raster/shaders/media.hpp"
 
@@ -60,6 +62,25 @@ struct PsCloudMarch {
             rgb[c] = (1.0f + e) * r.radiance[c] + opacity * fog.inScattered(c, tau, e);
         }
         return {glm::clamp(rgb, 0.0f, 1.0f), opacity};
+    }
+
+    // The march shade(d) runs over [s0, s1] (voxels along d), every evaluated sample recorded, for
+    // Scene::pixelMarch: distances in metres from the eye (t1 ≤ t0: the ray missed). The colour is the
+    // caller's: its shader's output for the pixel.
+    PixelMarch tracedMarch(const glm::vec3& d, float s0, float s1) const {
+        const float metres = 1.0f / voxelsPerMetre;
+        PixelMarch march;
+        const media::MarchResult r =
+            media::marchCloud(*volume, light, settings, eyeVoxels(), d, s0, s1, [&](media::MarchSample s) {
+                s.s *= metres;
+                march.samples.push_back(s);
+            });
+        march.steps = s1 > s0 ? std::max(1u, uint32_t(std::ceil((s1 - s0) / settings.step))) : 0u;
+        march.t0 = s0 * metres, march.t1 = s1 * metres;
+        march.ds = march.steps > 0 ? (march.t1 - march.t0) / float(march.steps) : 0.0f;
+        march.radiance = r.radiance, march.transmittance = r.transmittance;
+        march.densityEvaluations = r.densityEvaluations;
+        return march;
     }
 
     template <class T>

@@ -34,6 +34,12 @@ struct VsMediaRay {
     MediaRayVertex operator()(const MediaRayIn& in) const { return {glm::vec4(in.ndc, 0.5f, 1.0f), in.ndc}; }
 };
 
+// Pixel (x, y)'s centre in a width × height target as the full-screen triangle interpolates ndc there
+// (y up): the ray a media scene's pixel shader marches for that pixel (Scene::pixelMarch).
+inline glm::vec2 pixelNdc(uint32_t x, uint32_t y, uint32_t width, uint32_t height) {
+    return {(float(x) + 0.5f) / float(width) * 2.0f - 1.0f, 1.0f - (float(y) + 0.5f) / float(height) * 2.0f};
+}
+
 // The pixel's view ray, unit length (header), over float or eight lanes with the same operations per
 // lane: H(z) = M·(ndc, z, 1) summed column by column, P = H.xyz/H.w, d = (P_far − P_near)·(1/|…|).
 template <class T>

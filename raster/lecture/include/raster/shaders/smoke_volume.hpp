@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <glm/glm.hpp>
 #include <type_traits>
+#include <utility>
 
 #include "raster/shaders/cloud.hpp"
 #include "raster/soft_particles.hpp"
@@ -34,14 +35,19 @@ struct PsSmokeVolume {
         return glm::length(glm::vec3(h) / h.w - march.eye) * march.voxelsPerMetre;
     }
 
+    // The stretch [s0, s1] of the view ray d (voxels from the eye) that the march covers: inside the
+    // volume's box and in front of the surface at stored depth z (s1 ≤ s0: none).
+    std::pair<float, float> marchInterval(const glm::vec3& d, const glm::vec2& ndc, float z) const {
+        const auto [s_near, s_far] = media::slabInterval(march.volume->box, march.eyeVoxels(), d);
+        return {std::max(s_near, 0.0f), std::min(s_far, surfaceDistance(ndc, z))};
+    }
+
     // Not inlined, as PsCloudMarch::shade (a call per pixel is nothing beside its march).
     [[gnu::noinline]] glm::vec4 shade(const glm::vec3& d, const glm::vec2& ndc, float z) const {
-        const glm::vec3 o = march.eyeVoxels();
-        const auto [s_near, s_far] = media::slabInterval(march.volume->box, o, d);
-        const float s0 = std::max(s_near, 0.0f);
-        const float s1 = std::min(s_far, surfaceDistance(ndc, z));
+        const auto [s0, s1] = marchInterval(d, ndc, z);
         if (!(s1 > s0)) return glm::vec4(0.0f);
-        const media::MarchResult r = media::marchCloud(*march.volume, march.light, march.settings, o, d, s0, s1);
+        const media::MarchResult r =
+            media::marchCloud(*march.volume, march.light, march.settings, march.eyeVoxels(), d, s0, s1);
         return {glm::clamp(r.radiance, 0.0f, 1.0f), 1.0f - r.transmittance};
     }
 
