@@ -57,7 +57,7 @@ CASES = {
     "fork_bomb": ("billboards", PARTICLES, "error", ["too many processes: "]),
     "snoop": ("billboards", set(), "pass", []),
     # A file that does not compile is named as such, its first error's file and line first.
-    "compile_error": ("billboards", BILLBOARDS, "error", ["compile failed: billboards.cpp:32:", "error: ", "billboardSizes"]),
+    "compile_error": ("billboards", BILLBOARDS, "error", ["compile failed: billboards.cpp:29:", "error: ", "billboardSizes"]),
     "link_error": ("billboards", BILLBOARDS, "error", ["link failed: ", "undefined reference to", "additiveFireBlend"]),
     "alternative": (("billboards", "particle-system", "sprite-methods", "stable-fog"), set(), "pass", []),
     "age_offset": ("input-layout", PARTICLES, "fail", ["input assembler: ", "with AGE = ", "what the solution reads as LIFESPAN (is the element's AlignedByteOffset that field's offsetof?)"]),

@@ -26,20 +26,17 @@
 //> // what the depth test and the blend did. `raster render billboards` writes billboards.png.
 //> // Look at labs/billboards/README.md for what each step should show.
 // END NOTE
-#include "raster/lab.hpp"
+#include "raster/labs/billboards.hpp"
 
 namespace {
 
 using namespace raster;
 using shaders::BillboardCorner;
-using shaders::BillboardIn;
 using shaders::BillboardVertex;
 
-// vsBillboard: pass-through; the geometry shader transforms, so that it can open the sprite after
-// the projection.
-struct VsBillboard {
-    BillboardVertex operator()(const BillboardIn& in) const { return {glm::vec4(in.position, 1.0f)}; }
-};
+// The vertex formats (BillboardIn, BillboardVertex, BillboardCorner: raster/shaders/billboard.hpp), the
+// pass-through vertex shader (shaders::VsBillboard) and the scene that draws your shaders with your
+// states are the lab's scaffolding: raster/lecture/include/raster/labs/billboards.hpp.
 
 // gsBillboard: one point in, a four-vertex triangle strip out.
 struct GsBillboard {
@@ -138,29 +135,9 @@ DepthStencilState fireDepth() {
 
 // The scene: SCENES.md's occluder, particles, fire texture and camera (raster/scenes.hpp), drawn
 // with the shaders and states above.
-class BillboardsLab final : public LabScene {
+class BillboardsLab final : public billboards_lab::BillboardsScene<GsBillboard, PsFire> {
   public:
-    explicit BillboardsLab(const SceneOptions& o) : data_(o) {
-        gs_.viewProj = data_.viewProj;
-        gs_.billboardSize = data_.billboardSize;
-        ps_fire_.billboardTexture = &data_.texture;
-    }
-
-    void render(Context& context, RenderTarget& color, DepthTarget& depth) override {
-        beginSceneFrame(context, color, depth);  // clear, bind, viewport, no culling
-        data_.drawOccluder(context);  // draw 1: the occluder, opaque, depth test and write
-        // Draw 2: the particles, one point each; the geometry shader makes each a sprite.
-        context.setDepthStencilState(fireDepth());
-        context.setBlendState(fireBlend());
-        context.setVertexBuffer(0, &data_.particles);
-        context.setPrimitiveTopology(Topology::PointList);
-        context.draw(VsBillboard{}, gs_, ps_fire_, data_.count);
-    }
-
-  private:
-    ParticleSceneData data_;
-    GsBillboard gs_;
-    PsFire ps_fire_;
+    explicit BillboardsLab(const SceneOptions& o) : BillboardsScene(o, fireBlend(), fireDepth()) {}
 };
 
 }  // namespace

@@ -38,20 +38,10 @@ constexpr glm::vec4 kEdgeColour{0.95f, 0.95f, 0.9f, 1.0f};
 // The sky behind the world, no medium: a gradient from the horizon to the zenith.
 constexpr glm::vec3 kHorizon{0.80f, 0.83f, 0.86f}, kZenith{0.36f, 0.52f, 0.78f};
 
-struct LitIn {
-    glm::vec3 position, normal;
-    RASTER_INPUT_SIGNATURE(LitIn, RASTER_INPUT(position, "POSITION", 0), RASTER_INPUT(normal, "NORMAL", 0))
-};
-struct LitVertex {
-    glm::vec4 position;
-    glm::vec3 worldPos, normal;
-};
-struct VsLit {
-    glm::mat4 viewProj{1.0f};
-    LitVertex operator()(const LitIn& in) const {
-        return {viewProj * glm::vec4(in.position, 1.0f), in.position, in.normal};
-    }
-};
+// The world's vertex format, what its vertex shader passes on and the shader (raster/shaders/fog.hpp).
+using shaders::LitIn;
+using shaders::LitVertex;
+using shaders::VsLit;
 // The world without a medium: diffuse, L0 = albedo·(ambient + (1 − ambient)·max(0, n·l)), PsFog's light.
 struct PsSurface {
     glm::vec3 albedo{0.7f};

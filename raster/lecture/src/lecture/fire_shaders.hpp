@@ -1,4 +1,4 @@
-// The lecture's finished fire shaders (lecture 11, part 3): vsBillboard, gsBillboard, psFire, as the
+// The lecture's finished fire shaders (lecture 11, part 3): gsBillboard and psFire, as the
 // benchmark scenes (raster/lecture/src/scenes.cpp), the tools and the tests draw them. They are the
 // billboards lab's answers, so they are not among the library's public headers: the target
 // raster_lecture gives this folder to the library, the tools and the tests, never to labs/
@@ -16,11 +16,6 @@
 #include "raster/texture.hpp"
 
 namespace raster::shaders {
-
-// Pass-through: the geometry shader does the transform, so that it can open the sprite after projection.
-struct VsBillboard {
-    BillboardVertex operator()(const BillboardIn& in) const { return {glm::vec4(in.position, 1.0f)}; }
-};
 
 // Opens the sprite after projection (method (c) of the lecture): the centre goes to clip space and
 // the four corners are offset there by ±billboardSize·(1, 1), so the sprite always faces the camera
@@ -42,7 +37,8 @@ struct GsBillboard {
 // Written once for T = float and T = Float8: the pipeline shades 4×2 pixels per call where it can.
 struct PsFire {
     // Its draws' state (specialised_states.hpp).
-    using SpecialisedStates = raster::SpecialisedStates<Specialise<DepthState::LessNoWrite, BlendMode::Additive>>;
+    using SpecialisedStates =
+        raster::SpecialisedStates<Specialise<DepthState::LessNoWrite, BlendMode::Additive>>;
     using Input = BillboardCorner;
     const Texture2D* billboardTexture = nullptr;
     SamplerState sampler = SamplerState::bilinear(AddressMode::Clamp);

@@ -41,20 +41,10 @@ struct PanelRays {
     }
 };
 
-struct LitIn {
-    glm::vec3 position, normal;
-    RASTER_INPUT_SIGNATURE(LitIn, RASTER_INPUT(position, "POSITION", 0), RASTER_INPUT(normal, "NORMAL", 0))
-};
-struct LitVertex {
-    glm::vec4 position;
-    glm::vec3 worldPos, normal;
-};
-struct VsLit {
-    glm::mat4 viewProj{1.0f};
-    LitVertex operator()(const LitIn& in) const {
-        return {viewProj * glm::vec4(in.position, 1.0f), in.position, in.normal};
-    }
-};
+// The world's vertex format, what its vertex shader passes on and the shader (raster/shaders/fog.hpp).
+using shaders::LitIn;
+using shaders::LitVertex;
+using shaders::VsLit;
 
 struct SkyIn {
     glm::vec2 ndc;

@@ -1,6 +1,7 @@
-// The lecture's fire billboards (lecture 11, part 3): the structs its shaders pass along. The
-// finished shaders (vsBillboard, gsBillboard, psFire) are the billboards lab's answers: they live with
-// the benchmark scenes (raster/lecture/src/lecture/fire_shaders.hpp) and the lab's solution, not here.
+// The lecture's fire billboards (lecture 11, part 3): the structs its shaders pass along and the
+// pass-through vertex shader. The finished gsBillboard and psFire are the billboards lab's answers:
+// they live with the benchmark scenes (raster/lecture/src/lecture/fire_shaders.hpp) and the lab's
+// solution, not here.
 //
 // HLSL of the slides, for comparison:
 //   VsosBillboard vsBillboard(IaosBillboard input) { output.pos = float4(input.pos, 1); }
@@ -39,5 +40,11 @@ struct BillboardCornerT {
     glm::vec<2, T> tex;
 };
 using BillboardCorner = BillboardCornerT<float>;
+
+// vsBillboard: pass-through; the geometry shader does the transform, so that it can open the sprite
+// after the projection.
+struct VsBillboard {
+    BillboardVertex operator()(const BillboardIn& in) const { return {glm::vec4(in.position, 1.0f)}; }
+};
 
 }  // namespace raster::shaders
