@@ -93,8 +93,8 @@ inline glm::vec3 marchFigure(const MetaballVolume& volume, const FigureMedium& m
         glm::vec3 q = medium.emission * rho;
         if (scatters) {
             const LightAtPoint at = lightAt(light, x);
-            const float length = point ? detail::shadowLength<LightKind::point>(volume.box, x, at, inv_light)
-                                       : detail::shadowLength<LightKind::directional>(volume.box, x, at, inv_light);
+            const float length = point ? detail::pointShadowLength(volume.box, x, at)
+                                       : detail::exitDistance(volume.box, x, at.toLight, inv_light);
             const float tau = detail::shadowDepth(volume, shadow_settings, x, at.toLight, length, counts);
             const float p = point ? phaseValue(medium.phase, medium.g, glm::dot(d, at.toLight)) : phase;
             const glm::vec3 in_scattered = p * glm::exp(-extinction * tau) * at.irradiance + light.ambient;

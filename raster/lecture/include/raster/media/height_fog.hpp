@@ -39,16 +39,16 @@ namespace raster::media {
 // m·e^x as (m·e^{x/2})·e^{x/2}: e^x alone may overflow (x > 88.7 in float) or underflow (x < −87.3)
 // where m·e^x does not. m ≥ 0; the result is 0 or ∞ only where m·e^x rounds to that (or m = ∞).
 template <class T>
-T scaledExp(T m, T x) {
+[[gnu::always_inline]] inline T scaledExp(T m, T x) {
     using namespace detail;
     const T half = exp(x * T(0.5f));
     return (m * half) * half;
 }
 
 // τ(s), the optical depth per unit σ0 from height y0 along a ray with direction y component dy over
-// s metres (header: the stable form). s ≥ 0 or +∞.
+// s metres (header: the stable form). s ≥ 0 or +∞. Inlined always (exprel.hpp says why).
 template <class T>
-T heightFogOpticalDepth(T b, T y0, T dy, T s) {
+[[gnu::always_inline]] inline T heightFogOpticalDepth(T b, T y0, T dy, T s) {
     using namespace detail;
     const T k = b * dy;
     const T abs_k = abs(k);
@@ -61,7 +61,7 @@ T heightFogOpticalDepth(T b, T y0, T dy, T s) {
 
 // τ(∞): e^{b·y0}/(−k) for a ray rising into thinning fog (k = b·dy < 0), else +∞. ℓ(|k|, ∞) = 1/|k|.
 template <class T>
-T heightFogOpticalDepthToInfinity(T b, T y0, T dy) {
+[[gnu::always_inline]] inline T heightFogOpticalDepthToInfinity(T b, T y0, T dy) {
     using namespace detail;
     const T k = b * dy;
     const T inf(std::numeric_limits<Scalar<T>>::infinity());

@@ -236,12 +236,10 @@ inline Float8 expm18(Float8 x) {
     return x;
 }
 
-// The shadow ray's length from x along at.toLight: to the box's exit, or to a point light nearer than it
-// (inv_light: 1/toLight of a directional light, for which at.distance is ∞).
-template <LightKind Kind>
-float shadowLength(const Box& box, const glm::vec3& x, const LightAtPoint& at, const glm::vec3& inv_light) {
-    if constexpr (Kind == LightKind::directional) return exitDistance(box, x, at.toLight, inv_light);
-    else return std::min(exitDistance(box, x, at.toLight, 1.0f / at.toLight), at.distance);
+// A point light's shadow ray's length from x along at.toLight: to the box's exit, or to the light where
+// it is nearer.
+inline float pointShadowLength(const Box& box, const glm::vec3& x, const LightAtPoint& at) {
+    return std::min(exitDistance(box, x, at.toLight, 1.0f / at.toLight), at.distance);
 }
 
 // The metaball medium's places in the march (scatter_march.hpp): its eight-wide densities, the span of
@@ -252,7 +250,7 @@ struct MetaballPlaces {
     const MarchSettings& settings;
     MarchResult& result;  // counts the shadow rays' density evaluations
     float g;
-    glm::vec3 inv_light;  // 1/toLight (directional)
+    glm::vec3 to_light, inv_light;  // a directional light's toLight and 1/toLight
 
     Float8 extinction8(Float8 x, Float8 y, Float8 z) const { return v.extinction8(x, y, z); }
     float phase(float cos_theta) const { return henyeyGreenstein(g, cos_theta); }
@@ -260,8 +258,11 @@ struct MetaballPlaces {
         if (settings.skip == SkipMethod::balls) return ballSpan(v, o, d, t0, dt, n);
         return {0, int32_t(n) - 1};
     }
+    // `at`: a point light's light at x (scatter_march.hpp; a directional light's is not set).
     float shadowDepthAt(const glm::vec3& x, const LightAtPoint& at) const {
-        return shadowDepth(v, settings, x, at.toLight, shadowLength<Kind>(v.box, x, at, inv_light), result);
+        if constexpr (Kind == LightKind::directional)
+            return shadowDepth(v, settings, x, to_light, exitDistance(v.box, x, to_light, inv_light), result);
+        else return shadowDepth(v, settings, x, at.toLight, pointShadowLength(v.box, x, at), result);
     }
     Float8 shadowTransmittance8(const std::array<Float8, 3>& x, uint32_t lanes, const LightAtPoint* at) const {
         Float8 tau(0.0f);
@@ -306,7 +307,7 @@ MarchResult marchMetaballsLit(const MetaballVolume& v, const VolumeLight& light,
                               const glm::vec3& eye, const glm::vec3& d, float t0, float t1, Observer& observe) {
     MarchResult result;
     if (!(t1 > t0)) return result;
-    const MetaballPlaces<Kind> places{v, settings, result, light.g, 1.0f / light.toLight};
+    const MetaballPlaces<Kind> places{v, settings, result, light.g, light.toLight, 1.0f / light.toLight};
     FromTheEye<Observer> integrator{result, observe, light.albedo};
     if (settings.skip != SkipMethod::grid) {
         result.densityEvaluations +=

@@ -40,13 +40,13 @@ struct FogMedium {
     // Optical depth per unit σ from height y0 along unit direction with y component dy, over a
     // finite distance s (media/height_fog.hpp).
     template <class T>
-    T opticalDepth(float y0, T dy, T s) const {
+    [[gnu::always_inline]] T opticalDepth(float y0, T dy, T s) const {
         if (!height) return s;
         return media::heightFogOpticalDepth(T(b), T(y0), dy, s);
     }
     // The same to s = ∞: e^{b·y0}/(−k) for a ray rising into thinning fog (k < 0), else ∞.
     template <class T>
-    T opticalDepthToInfinity(float y0, T dy) const {
+    [[gnu::always_inline]] T opticalDepthToInfinity(float y0, T dy) const {
         if (!height) return T(std::numeric_limits<float>::infinity());
         return media::heightFogOpticalDepthToInfinity(T(b), T(y0), dy);
     }
