@@ -17,6 +17,7 @@
 #include "raster/shaders/cloud.hpp"
 #include "raster/pipeline.hpp"
 #include "raster/scenes.hpp"
+#include "scene_bytes.hpp"
 
 using namespace raster;
 using namespace raster::media;
@@ -68,15 +69,6 @@ std::vector<Ray> testRays(int count) {
 bool sameBits(const MarchResult& a, const MarchResult& b) {
     return std::memcmp(&a.radiance, &b.radiance, sizeof a.radiance) == 0 &&
            std::memcmp(&a.transmittance, &b.transmittance, sizeof a.transmittance) == 0;
-}
-
-std::vector<uint8_t> renderBytes(const std::string& scene, const SceneOptions& options, uint32_t threads) {
-    auto s = makeScene(scene, options);
-    Context context({threads});
-    RenderTarget color(options.width, options.height);
-    DepthTarget depth(options.width, options.height);
-    s->render(context, color, depth);
-    return {color.rgba8(), color.rgba8() + size_t(options.width) * options.height * 4};
 }
 
 SceneOptions smallCloud() {
@@ -136,14 +128,14 @@ TEST(CloudVolume, MemoryWithinVoxelsPlus15Percent) {
 
 TEST(CloudScene, SameBitsAtOneTwoAndEightThreadsOverTheGround) {
     const SceneOptions o = smallCloud();
-    const std::vector<uint8_t> one = renderBytes("cloud", o, 1);
-    EXPECT_EQ(renderBytes("cloud", o, 2), one);
-    EXPECT_EQ(renderBytes("cloud", o, 8), one);
+    const std::vector<uint8_t> one = renderSceneBytes("cloud", o, 1);
+    EXPECT_EQ(renderSceneBytes("cloud", o, 2), one);
+    EXPECT_EQ(renderSceneBytes("cloud", o, 8), one);
     // The ground alone: the fog scene from the cloud's camera. The cloud changes a good share of the
     // pixels and leaves the others exactly as the ground left them (its blend adds 0 there).
     SceneOptions ground = o;
     ground.camera = defaultCamera("cloud");
-    const std::vector<uint8_t> fog = renderBytes("fog", ground, 1);
+    const std::vector<uint8_t> fog = renderSceneBytes("fog", ground, 1);
     size_t changed = 0;
     for (size_t p = 0; p < one.size(); p += 4) changed += std::memcmp(&one[p], &fog[p], 4) != 0;
     EXPECT_GT(changed, one.size() / 4 / 50);
@@ -159,7 +151,7 @@ TEST(CloudScene, RawFileOfTheGeneratedCloudRendersTheSame) {
     SceneOptions file = smallCloud();
     file.volume = path;
     file.voxels.reset();
-    EXPECT_EQ(renderBytes("cloud", file, 2), renderBytes("cloud", smallCloud(), 2));
+    EXPECT_EQ(renderSceneBytes("cloud", file, 2), renderSceneBytes("cloud", smallCloud(), 2));
     std::filesystem::resize_file(path, 1000);
     try {
         makeScene("cloud", file);
@@ -382,9 +374,9 @@ TEST(PointLight, FarAwayItIsTheDirectionalLight) {
 
 TEST(CloudScene, PointLitCloudSameBitsAtOneTwoAndEightThreads) {
     const SceneOptions o = smallCloud();
-    const std::vector<uint8_t> one = renderBytes("cloud-point", o, 1);
-    EXPECT_EQ(renderBytes("cloud-point", o, 2), one);
-    EXPECT_EQ(renderBytes("cloud-point", o, 8), one);
+    const std::vector<uint8_t> one = renderSceneBytes("cloud-point", o, 1);
+    EXPECT_EQ(renderSceneBytes("cloud-point", o, 2), one);
+    EXPECT_EQ(renderSceneBytes("cloud-point", o, 8), one);
     // The light under the cloud lights its underside: some pixels well above the night sky.
     uint32_t lit = 0;
     for (size_t p = 0; p < one.size(); p += 4) lit += one[p] > 60;
@@ -398,11 +390,11 @@ TEST(CloudScene, PointLightInTheSunsPlaceLightsTheGround) {
     SceneOptions o = smallCloud();
     o.light = SceneLight{true, {0.0f, 0.6f, 1.0f}};
     o.lightIntensity = glm::vec3(6.0f);
-    const std::vector<uint8_t> lit = renderBytes("cloud", o, 1);
-    EXPECT_EQ(renderBytes("cloud", o, 2), lit);
-    EXPECT_EQ(renderBytes("cloud", o, 8), lit);
+    const std::vector<uint8_t> lit = renderSceneBytes("cloud", o, 1);
+    EXPECT_EQ(renderSceneBytes("cloud", o, 2), lit);
+    EXPECT_EQ(renderSceneBytes("cloud", o, 8), lit);
     o.lightIntensity = glm::vec3(0.0f);
-    const std::vector<uint8_t> dark = renderBytes("cloud", o, 2);
+    const std::vector<uint8_t> dark = renderSceneBytes("cloud", o, 2);
     // The ground below the light: the bottom rows, middle columns; farther: the rows above them.
     auto brighter = [&](uint32_t y0, uint32_t y1) {
         double sum = 0.0;

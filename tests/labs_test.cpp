@@ -16,6 +16,7 @@
 #include "raster/lab.hpp"
 #include "raster/strict_weak_order.hpp"
 #include "lecture_particle.hpp"
+#include "test_paths.hpp"
 
 namespace raster {
 namespace {
@@ -47,7 +48,7 @@ void expectInvalidArgument(const auto& f, const std::string& part) {
 
 // A file of the source tree, as text (empty, with a failure, when it is missing).
 std::string labText(const std::string& path) {
-    std::ifstream in(std::string(RASTER_SOURCE_DIR) + "/" + path);
+    std::ifstream in(test::sourceDir() + "/" + path);
     EXPECT_TRUE(in) << path << " is missing";
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
@@ -170,7 +171,7 @@ TEST(Labs, RasterizerSolutionIsTheLibrarysCoverageOnEveryAdversarialSet) {
 
 // As handed out, every triangle covers its whole bounding box. Skipped once a student has started.
 TEST(Labs, RasterizerAsHandedOutDiffersFromTheSolution) {
-    std::ifstream in(std::string(RASTER_SOURCE_DIR) + "/labs/rasterizer/rasterizer.cpp");
+    std::ifstream in(test::sourceDir() + "/labs/rasterizer/rasterizer.cpp");
     ASSERT_TRUE(in) << "labs/rasterizer/rasterizer.cpp is missing";
     const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
     for (const char* start :

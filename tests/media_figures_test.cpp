@@ -15,19 +15,15 @@
 #include "raster/pipeline.hpp"
 #include "raster/scenes.hpp"
 #include "raster/shaders/media.hpp"
+#include "scene_bytes.hpp"
 
 using namespace raster;
 using namespace raster::media;
 
 namespace {
 
-std::vector<uint8_t> renderBytes(const std::string& name, SceneOptions options, uint32_t threads = 2) {
-    auto scene = makeScene(name, options);
-    Context context({threads});
-    RenderTarget color(options.width, options.height);
-    DepthTarget depth(options.width, options.height);
-    scene->render(context, color, depth);
-    return {color.rgba8(), color.rgba8() + size_t(options.width) * options.height * 4};
+std::vector<uint8_t> renderBytes(const std::string& name, const SceneOptions& options, uint32_t threads = 2) {
+    return renderSceneBytes(name, options, threads);
 }
 
 // The figures' medium: the media scene's six balls, extinction scale 1 (extinction() is the density).

@@ -13,6 +13,7 @@
 #include "raster/pipeline.hpp"
 #include "raster/scenes.hpp"
 #include "raster/shaders/media.hpp"
+#include "scene_bytes.hpp"
 
 using namespace raster;
 using namespace raster::media;
@@ -297,12 +298,7 @@ VolumeLight pointLightAt(const glm::vec3& position, const glm::vec3& intensity, 
 }
 
 std::vector<uint8_t> renderMedia(const SceneOptions& o, uint32_t threads) {
-    auto scene = makeScene("media", o);
-    Context context({threads});
-    RenderTarget color(o.width, o.height);
-    DepthTarget depth(o.width, o.height);
-    scene->render(context, color, depth);
-    return {color.rgba8(), color.rgba8() + size_t(o.width) * o.height * 4};
+    return renderSceneBytes("media", o, threads);
 }
 
 }  // namespace

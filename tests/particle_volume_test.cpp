@@ -24,6 +24,7 @@
 #include "raster/scenes.hpp"
 #include "raster/shaders/smoke_volume.hpp"
 #include "raster/thread_pool.hpp"
+#include "scene_bytes.hpp"
 #include "smoke_world.hpp"
 
 using namespace raster;
@@ -73,15 +74,6 @@ std::string errorOf(F&& f) {
         return e.what();
     }
     return "";
-}
-
-std::vector<uint8_t> renderBytes(const std::string& scene, const SceneOptions& options, uint32_t threads) {
-    auto s = makeScene(scene, options);
-    Context context({threads});
-    RenderTarget color(options.width, options.height);
-    DepthTarget depth(options.width, options.height);
-    s->render(context, color, depth);
-    return {color.rgba8(), color.rgba8() + size_t(options.width) * options.height * 4};
 }
 
 SceneOptions smallSmoke() {
@@ -280,13 +272,13 @@ TEST(ParticleVolume, ParticleSplatTakesSizeAndOpacity) {
 
 TEST(SmokeVolumeScene, SameBitsAtOneTwoAndEightThreads) {
     const SceneOptions o = smallSmoke();
-    const std::vector<uint8_t> one = renderBytes("smoke-volume", o, 1);
-    EXPECT_EQ(renderBytes("smoke-volume", o, 2), one);
-    EXPECT_EQ(renderBytes("smoke-volume", o, 8), one);
+    const std::vector<uint8_t> one = renderSceneBytes("smoke-volume", o, 1);
+    EXPECT_EQ(renderSceneBytes("smoke-volume", o, 2), one);
+    EXPECT_EQ(renderSceneBytes("smoke-volume", o, 8), one);
     // The smoke covers a good share of the picture, not all of it.
     SceneOptions none = o;
     none.count = 0u;
-    const std::vector<uint8_t> ground = renderBytes("smoke-volume", none, 1);
+    const std::vector<uint8_t> ground = renderSceneBytes("smoke-volume", none, 1);
     size_t changed = 0;
     for (size_t p = 0; p < one.size(); p += 4) changed += std::memcmp(&one[p], &ground[p], 4) != 0;
     EXPECT_GT(changed, one.size() / 4 / 20);
@@ -297,7 +289,7 @@ TEST(SmokeVolumeScene, SameBitsAtOneTwoAndEightThreads) {
 TEST(SmokeVolumeScene, WithoutParticlesItIsTheSmokeScenesGround) {
     SceneOptions o = smallSmoke();
     o.count = 0u;
-    EXPECT_EQ(renderBytes("smoke-volume", o, 2), renderBytes("smoke", o, 2));
+    EXPECT_EQ(renderSceneBytes("smoke-volume", o, 2), renderSceneBytes("smoke", o, 2));
 }
 
 // The march ends at the surface behind the pixel: through a homogeneous medium of μ per voxel, the
@@ -367,7 +359,7 @@ TEST(SmokeVolumeScene, PixelMarchIsTheRenderedPixelsMarch) {
     scene->render(context, color, depth);
     SceneOptions none = o;
     none.count = 0u;
-    const std::vector<uint8_t> ground = renderBytes("smoke-volume", none, 2);
+    const std::vector<uint8_t> ground = renderSceneBytes("smoke-volume", none, 2);
     size_t marched = 0, cut = 0, k = 0;
     for (uint32_t y = 3; y < o.height; y += 7) {
         for (uint32_t x = 2; x < o.width; x += 5, ++k) {

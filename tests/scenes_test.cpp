@@ -15,6 +15,7 @@
 
 #include "raster/check.hpp"
 #include "raster/shaders/fog.hpp"
+#include "test_paths.hpp"
 
 namespace raster {
 namespace {
@@ -58,7 +59,7 @@ TEST(Scenes, FireTextureMatchesTheFormula) {
 }
 
 TEST(Scenes, FireTextureEqualsSharedPngByteForByte) {
-    const std::string path = RASTER_SHARED_DIR "/bench/fire.png";
+    const std::string path = test::sharedDir() + "/bench/fire.png";
     if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " does not exist";
     const Texture2D png = Texture2D::fromPng(path);
     const Texture2D fire = makeFireTexture();

@@ -23,6 +23,7 @@
 #include "raster/format.hpp"
 #include "raster/simd/ops.hpp"
 #include "raster/stages/9_output_merger.hpp"
+#include "test_paths.hpp"
 
 namespace raster {
 namespace {
@@ -395,8 +396,8 @@ std::string readFile(const std::string& path) {
     return text;
 }
 
-const std::string kRecordingPath = std::string(RASTER_TEST_DATA_DIR) + "/simd/avx512_kernels.txt";
-const std::string kAvx512Header = std::string(RASTER_TEST_DATA_DIR) + "/../../raster/pipeline/include/raster/simd/avx512.hpp";
+const std::string kRecordingPath = test::testDataDir() + "/simd/avx512_kernels.txt";
+const std::string kAvx512Header = test::sourceDir() + "/raster/pipeline/include/raster/simd/avx512.hpp";
 
 // A float in [lo, hi) from 24 random bits, the same on every standard library (the <random>
 // distributions are not).

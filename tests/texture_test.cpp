@@ -18,6 +18,7 @@
 #include "raster/format.hpp"
 #include "raster/sampler.hpp"
 #include "raster/shader_context.hpp"
+#include "test_paths.hpp"
 
 namespace raster {
 namespace {
@@ -713,7 +714,7 @@ TEST(Texture2D, FormatsSizesAndCopies) {
 // ---- Files ---------------------------------------------------------------------------------------------
 
 TEST(TextureFile, FirePngMatchesScenesFormula) {
-    const Texture2D t = Texture2D::fromPng(RASTER_SHARED_DIR "/bench/fire.png");
+    const Texture2D t = Texture2D::fromPng(test::sharedDir() + "/bench/fire.png");
     ASSERT_EQ(t.width(), 64u);
     ASSERT_EQ(t.height(), 64u);
     ASSERT_EQ(t.mipLevels(), 1u);
@@ -734,7 +735,7 @@ TEST(TextureFile, FirePngMatchesScenesFormula) {
             }
         }
     EXPECT_EQ(mismatches, 0);
-    const Texture2D f = Texture2D::fromPng(RASTER_SHARED_DIR "/bench/fire.png", Format::R32G32B32A32_FLOAT);
+    const Texture2D f = Texture2D::fromPng(test::sharedDir() + "/bench/fire.png", Format::R32G32B32A32_FLOAT);
     EXPECT_EQ(f.format(), Format::R32G32B32A32_FLOAT);
     EXPECT_EQ(f.load(17, 40), t.load(17, 40));
 }
@@ -774,7 +775,7 @@ TEST(TextureErrors, BadSizesAndFormatsAreInvalidArgument) {
     EXPECT_EQ(errorCodeOf([&] { Texture2D::fromRgba32f(3, 2, floats); }), ErrorCode::InvalidArgument);
     EXPECT_EQ(errorCodeOf([] { Texture2D::fromRgba8(Texture2D::kMaxSize + 1, 1, {}); }),
               ErrorCode::InvalidArgument);
-    EXPECT_EQ(errorCodeOf([] { Texture2D::fromPng(RASTER_SHARED_DIR "/bench/fire.png", Format::D32_FLOAT); }),
+    EXPECT_EQ(errorCodeOf([] { Texture2D::fromPng(test::sharedDir() + "/bench/fire.png", Format::D32_FLOAT); }),
               ErrorCode::InvalidArgument);
 }
 

@@ -13,10 +13,7 @@
 #include "commands.hpp"
 #include "grade/grader.hpp"
 #include "options.hpp"
-
-#ifndef RASTER_GRADE_ROOT
-#error "the build defines RASTER_GRADE_ROOT: the source tree holding labs/ and solutions/"
-#endif
+#include "source_tree.hpp"
 
 namespace raster::tools {
 namespace {
@@ -83,7 +80,7 @@ Command addGrade(CLI::App& app) {
                    "address space of each render of the submission, in MiB");
     addWholeNumber(*command, "--build-seconds", args->buildSeconds, 1, 3600,
                    "wall and CPU seconds of each compile and link of the submission");
-    args->options.gradingRoot = RASTER_GRADE_ROOT;
+    args->options.gradingRoot = sourceTree();
     command
         ->add_option("--grading-root", args->options.gradingRoot,
                      "the folder whose labs/ and solutions/ hold the grading declarations")
@@ -110,7 +107,7 @@ Command addReferences(CLI::App& app) {
                                    "scenes (out/labs/<lab>/reference/<scene>.png) and at its defaults "
                                    "(<lab>@solution.png)");
     auto out = std::make_shared<std::string>();
-    auto root = std::make_shared<std::string>(RASTER_GRADE_ROOT);
+    auto root = std::make_shared<std::string>(sourceTree());
     command->add_option("out", *out, "the folder that gets labs/<lab>/reference/")->required();
     command
         ->add_option("--grading-root", *root, "the folder whose labs/ hold the public grading declarations")

@@ -2,10 +2,6 @@
 
 #include <SDL.h>
 
-#ifndef RASTER_SOURCE_ROOT
-#error "the build defines RASTER_SOURCE_ROOT: the source tree holding labs/"
-#endif
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -15,6 +11,7 @@
 
 #include "camera.hpp"
 #include "raster/trace_format.hpp"
+#include "source_tree.hpp"
 
 namespace raster::tools {
 namespace {
@@ -81,7 +78,7 @@ std::string keyName(const SDL_Keysym& key, bool fly) {
 // unless told otherwise. Empty where there is none (not a lab, or solutions/ present).
 std::string handoutReference(const std::string& scene) {
     const std::string path =
-        std::string(RASTER_SOURCE_ROOT) + "/labs/" + scene + "/reference/" + scene + "@solution.png";
+        std::string(sourceTree()) + "/labs/" + scene + "/reference/" + scene + "@solution.png";
     std::error_code ec;
     return std::filesystem::is_regular_file(path, ec) ? path : std::string();
 }
