@@ -22,10 +22,6 @@ using namespace raster::media;
 
 namespace {
 
-std::vector<uint8_t> renderBytes(const std::string& name, const SceneOptions& options, uint32_t threads = 2) {
-    return renderSceneBytes(name, options, threads);
-}
-
 // The figures' medium: the media scene's six balls, extinction scale 1 (extinction() is the density).
 MetaballVolume figureVolume() {
     return makeMetaballVolume(mediaSceneMetaballs(), mediaSceneBox(), 1.0f, 1);
@@ -53,9 +49,9 @@ std::vector<std::pair<glm::vec3, glm::vec3>> raysThroughTheBox(int count) {
 TEST(MediaFigures, SameBitsAtOneTwoAndEightThreads) {
     for (const char* name : {"media-absorption", "media-emission", "media-scattering", "media-euler"}) {
         const SceneOptions options{.width = 213, .height = 120};
-        const std::vector<uint8_t> one = renderBytes(name, options, 1);
-        EXPECT_EQ(renderBytes(name, options, 2), one) << name << " at 2 threads";
-        EXPECT_EQ(renderBytes(name, options, 8), one) << name << " at 8 threads";
+        const std::vector<uint8_t> one = renderSceneBytes(name, options, 1);
+        EXPECT_EQ(renderSceneBytes(name, options, 2), one) << name << " at 2 threads";
+        EXPECT_EQ(renderSceneBytes(name, options, 8), one) << name << " at 8 threads";
     }
 }
 
@@ -69,9 +65,9 @@ struct AgainstBackground {
 };
 AgainstBackground compareWithBackground(const char* name, int sign) {
     SceneOptions options{.width = 320, .height = 180};
-    const std::vector<uint8_t> image = renderBytes(name, options);
+    const std::vector<uint8_t> image = renderSceneBytes(name, options, 2);
     (sign > 0 ? options.fogSource : options.fogSigma) = glm::vec3(0.0f);
-    const std::vector<uint8_t> background = renderBytes(name, options);
+    const std::vector<uint8_t> background = renderSceneBytes(name, options, 2);
     AgainstBackground r;
     r.pixels = image.size() / 4;
     for (size_t i = 0; i < image.size(); ++i) {
@@ -105,7 +101,7 @@ TEST(MediaFigures, EmissionOnlyNeverDarkens) {
 // forward lobe is brighter than isotropic at every pixel and by more than 0.25 on average.
 TEST(MediaFigures, HenyeyGreensteinIsBrighterThanIsotropicTowardsTheLight) {
     const uint32_t w = 480, h = 180, panel = w / 3;
-    const std::vector<uint8_t> image = renderBytes("media-scattering", {.width = w, .height = h});
+    const std::vector<uint8_t> image = renderSceneBytes("media-scattering", {.width = w, .height = h}, 2);
     SceneOptions panel_options{.width = panel, .height = h};
     const SceneCamera camera = defaultCamera("media-scattering");
     const glm::mat4 inv_vp = glm::inverse(sceneProjection(panel_options) * sceneView(camera));
@@ -170,7 +166,7 @@ TEST(MediaFigures, RayleighScattersForwardAndBackwardAlike) {
 // and pixel of the panel (48 times).
 TEST(MediaFigures, EulerPanelIsFarFromTheReferenceWhereTheExponentialIsClose) {
     const uint32_t w = 480, h = 180, panel = w / 3;
-    const std::vector<uint8_t> image = renderBytes("media-euler", {.width = w, .height = h});
+    const std::vector<uint8_t> image = renderSceneBytes("media-euler", {.width = w, .height = h}, 2);
     double euler = 0.0, exponential = 0.0;
     for (uint32_t y = 0; y < h; ++y)
         for (uint32_t x = 0; x < panel; ++x)

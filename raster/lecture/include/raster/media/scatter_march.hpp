@@ -88,8 +88,9 @@ struct SampleLight {
 // eight-wide exponentials) inlined into the loop, as one function written out would have them; called
 // out of line they pass their eight lanes through memory, and the `media` scene took 1.4 times as long.
 template <MarchOrder Order, LightKind Kind, class Places, class Integrator>
-[[gnu::flatten]] uint32_t marchScattering(const Places& places, const VolumeLight& light, const glm::vec3& o, const glm::vec3& d,
-                         float t0, float t1, uint32_t steps, Integrator& integrator) {
+[[gnu::flatten]] uint32_t marchScattering(const Places& places, const VolumeLight& light, const glm::vec3& o,
+                                          const glm::vec3& d, float t0, float t1, uint32_t steps,
+                                          Integrator& integrator) {
     const float ds = (t1 - t0) / float(steps);
     std::pair<int32_t, int32_t> span{0, int32_t(steps) - 1};
     if constexpr (Order == MarchOrder::frontToBack && requires { places.span(o, d, t0, ds, steps); })

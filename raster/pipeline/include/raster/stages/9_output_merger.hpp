@@ -83,8 +83,10 @@ glm::vec<4, Real> saturate(const glm::vec<4, Real>& v) {
 // units of 1/255 pass inputs scaled by 255 and one = 255, and get 255 * factor. Always inlined: GCC
 // otherwise calls it from the generic blend, each factor through memory (the smoke scene, 6 %).
 template <class Real>
-[[gnu::always_inline]] inline glm::vec<4, Real> blendFactor(Blend b, const glm::vec<4, Real>& src, const glm::vec<4, Real>& src1,
-                              const glm::vec<4, Real>& dst, const glm::vec<4, Real>& constant, Real one) {
+[[gnu::always_inline]] inline glm::vec<4, Real> blendFactor(Blend b, const glm::vec<4, Real>& src,
+                                                            const glm::vec<4, Real>& src1,
+                                                            const glm::vec<4, Real>& dst,
+                                                            const glm::vec<4, Real>& constant, Real one) {
     using V = glm::vec<4, Real>;
     switch (b) {
         case Blend::Zero: return V(Real(0));
